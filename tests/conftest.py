@@ -1,0 +1,50 @@
+"""Fixtures shared by every test: a leased ROS domain, node processes, an rclpy probe."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterator
+from pathlib import Path
+
+import pytest
+
+from support import RosProcess, TestNode, executable, leased_domain, ros_environment
+
+if not os.environ.get('_ROS_WHEELS_BOOTSTRAP_COMPLETE'):
+    pytest.exit('run the tests through scripts/test (it sources the workspace)', returncode=4)
+
+
+@pytest.fixture
+def domain() -> Iterator[int]:
+    with leased_domain() as leased:
+        yield leased
+
+
+@pytest.fixture
+def ros_env(domain: int) -> dict[str, str]:
+    return ros_environment(domain)
+
+
+@pytest.fixture
+def launch(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Callable[..., RosProcess]]:
+    """launch('pkg', 'exe', *args) or launch(argv=[...]) starts a process; all stop at teardown."""
+    started: list[RosProcess] = []
+
+    def start(package: str | None = None, name: str | None = None, *args: str,
+              argv: list[str] | None = None, env: dict[str, str] | None = None) -> RosProcess:
+        command = argv if argv is not None else [executable(package, name), *args]
+        log = tmp_path / f'{len(started):02d}-{Path(command[0]).name}.log'
+        process = RosProcess(command, env or ros_env, log)
+        started.append(process)
+        return process
+
+    yield start
+    for process in reversed(started):
+        process.stop()
+
+
+@pytest.fixture
+def probe(domain: int) -> Iterator[TestNode]:
+    node = TestNode(domain)
+    yield node
+    node.close()

@@ -1,0 +1,191 @@
+"""Shared test helpers: ROS domains, node processes, and an in-test rclpy node.
+
+Every test talks real DDS on loopback (ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST) in a
+ROS_DOMAIN_ID leased for that test only, so concurrent test runs never hear each other.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import importlib
+import os
+import re
+import signal
+import subprocess
+import threading
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any
+
+import rclpy
+from ament_index_python.packages import get_package_prefix
+from rclpy.context import Context
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+
+REPO = Path(__file__).resolve().parent.parent
+LOCK_DIR = Path('/tmp/turtle-ws-domains')
+# Fast DDS maps a domain to UDP ports 7400 + 250 * id: ids up to 232 are valid on Linux.
+DOMAIN_IDS = range(1, 230)
+
+
+@contextmanager
+def leased_domain() -> Iterator[int]:
+    """Hold an exclusive lock on a free ROS_DOMAIN_ID for the duration of the block."""
+    LOCK_DIR.mkdir(exist_ok=True)
+    start = (os.getpid() * 7) % len(DOMAIN_IDS)
+    for offset in range(len(DOMAIN_IDS)):
+        domain = DOMAIN_IDS[(start + offset) % len(DOMAIN_IDS)]
+        handle = open(LOCK_DIR / f'{domain}.lock', 'w')
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            handle.close()
+            continue
+        try:
+            yield domain
+        finally:
+            handle.close()
+        return
+    raise RuntimeError('no free ROS_DOMAIN_ID left to lease')
+
+
+def ros_environment(domain: int) -> dict[str, str]:
+    env = dict(os.environ)
+    env['ROS_DOMAIN_ID'] = str(domain)
+    env['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
+    env['PYTHONUNBUFFERED'] = '1'
+    env['RCUTILS_COLORIZED_OUTPUT'] = '0'
+    env.setdefault('QT_QPA_PLATFORM', 'offscreen')
+    return env
+
+
+def interface_type(name: str) -> Any:
+    """The generated class for 'pkg/kind/Name' (e.g. 'turtlesim/srv/SetPen')."""
+    package, kind, type_name = name.split('/')
+    return getattr(importlib.import_module(f'{package}.{kind}'), type_name)
+
+
+def executable(package: str, name: str) -> str:
+    """Path of an installed executable, as `ros2 run` finds it."""
+    path = Path(get_package_prefix(package)) / 'lib' / package / name
+    if not os.access(path, os.X_OK):
+        raise FileNotFoundError(f'{package} has no executable {name} at {path}')
+    return str(path)
+
+
+class RosProcess:
+    """A node (or any command) run as a child process with its output kept in a file."""
+
+    def __init__(self, args: list[str], env: dict[str, str], log_path: Path) -> None:
+        self.args = args
+        self.log_path = log_path
+        self._log = open(log_path, 'wb')
+        self.popen = subprocess.Popen(
+            args, env=env, stdin=subprocess.DEVNULL, stdout=self._log,
+            stderr=subprocess.STDOUT, start_new_session=True)
+
+    @property
+    def output(self) -> str:
+        return self.log_path.read_text(errors='replace')
+
+    def wait_for_output(self, pattern: str, timeout: float = 10.0) -> re.Match[str]:
+        """Wait until `pattern` (a regex) appears in the output; fail with the output."""
+        deadline = time.monotonic() + timeout
+        while True:
+            match = re.search(pattern, self.output, re.MULTILINE)
+            if match:
+                return match
+            if time.monotonic() > deadline or self.popen.poll() is not None:
+                raise AssertionError(
+                    f'{pattern!r} not seen in the output of {self.args} within {timeout} s '
+                    f'(exit code {self.popen.poll()}):\n{self.output}')
+            time.sleep(0.05)
+
+    def wait(self, timeout: float = 20.0) -> int:
+        return self.popen.wait(timeout=timeout)
+
+    def stop(self, timeout: float = 5.0) -> int:
+        """Ctrl-C the process group like a terminal would; kill it if it does not exit."""
+        if self.popen.poll() is None:
+            try:
+                os.killpg(self.popen.pid, signal.SIGINT)
+                self.popen.wait(timeout=timeout)
+            except subprocess.TimeoutExpired:
+                os.killpg(self.popen.pid, signal.SIGKILL)
+                self.popen.wait()
+            except ProcessLookupError:
+                pass
+        self._log.close()
+        return self.popen.returncode
+
+
+class TestNode:
+    """An rclpy node in a private context on the test's domain, spun on demand."""
+
+    def __init__(self, domain: int, name: str = 'test_probe') -> None:
+        self.context = Context()
+        rclpy.init(context=self.context, domain_id=domain)
+        self.node = Node(name, context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+
+    def spin_for(self, seconds: float) -> None:
+        deadline = time.monotonic() + seconds
+        while time.monotonic() < deadline:
+            self.executor.spin_once(timeout_sec=min(0.05, max(0.0, deadline - time.monotonic())))
+
+    def spin_until(self, predicate: Callable[[], bool], timeout: float, what: str) -> None:
+        deadline = time.monotonic() + timeout
+        while not predicate():
+            if time.monotonic() > deadline:
+                raise AssertionError(f'timed out after {timeout} s waiting for {what}')
+            self.executor.spin_once(timeout_sec=0.05)
+
+    def call(self, srv_type: Any, name: str, request: Any, timeout: float = 10.0) -> Any:
+        """Call a service (waiting for it first) and return the response."""
+        client = self.node.create_client(srv_type, name)
+        try:
+            if not client.wait_for_service(timeout_sec=timeout):
+                raise AssertionError(f'service {name} did not appear within {timeout} s')
+            future = client.call_async(request)
+            self.executor.spin_until_future_complete(future, timeout_sec=timeout)
+            if not future.done():
+                raise AssertionError(f'service {name} did not answer within {timeout} s')
+            return future.result()
+        finally:
+            self.node.destroy_client(client)
+
+    def collect(self, msg_type: Any, topic: str, qos: Any = 10) -> list[Any]:
+        """Subscribe and return the list that received messages are appended to."""
+        received: list[Any] = []
+        self.node.create_subscription(msg_type, topic, received.append, qos)
+        return received
+
+    def close(self) -> None:
+        self.executor.shutdown()
+        self.node.destroy_node()
+        rclpy.shutdown(context=self.context)
+
+
+class Background:
+    """Spin a TestNode on a thread, for tests that must block elsewhere meanwhile."""
+
+    def __init__(self, probe: TestNode) -> None:
+        self._probe = probe
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+
+    def _run(self) -> None:
+        while not self._stop.is_set():
+            self._probe.executor.spin_once(timeout_sec=0.05)
+
+    def __enter__(self) -> Background:
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._stop.set()
+        self._thread.join(timeout=5)
