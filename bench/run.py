@@ -1,0 +1,53 @@
+"""Run the benchmark suite: `scripts/bench [--only NAME,...] [--quick]`.
+
+Writes bench/results/results.md and PNG plots, and prints the table. Every benchmark runs
+on its own leased ROS_DOMAIN_ID with ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST, with bounded
+counts and durations, and stops every process it started.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+
+import cpu
+import latency
+import report
+import roundtrip
+import scale
+import setup_time
+from common import RESULTS, session
+
+SUITE = {
+    'roundtrip': lambda s, quick: roundtrip.run(s, calls=500 if quick else roundtrip.CALLS),
+    'latency': lambda s, quick: latency.run(s, duration=3.0 if quick else latency.DURATION_S),
+    'scale': lambda s, quick: scale.run(s, counts=(1, 50) if quick else scale.COUNTS),
+    'cpu': lambda s, quick: cpu.run(s, duration=8.0 if quick else cpu.DURATION_S),
+    'setup': lambda s, quick: setup_time.run(s),
+}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument('--only', default=','.join(SUITE), help='comma-separated subset')
+    parser.add_argument('--quick', action='store_true', help='short runs, for trying it out')
+    options = parser.parse_args()
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    started = time.monotonic()
+    rows, data = [], {}
+    for name in options.only.split(','):
+        print(f'bench: {name} ...', flush=True)
+        with session(name) as current:
+            new_rows, new_data = SUITE[name](current, options.quick)
+        rows += new_rows
+        data.update(new_data)
+    markdown = report.write_markdown(rows, time.monotonic() - started)
+    plots = report.write_plots(data)
+    (RESULTS / 'raw.json').write_text(json.dumps(data, indent=1, default=str))
+    print(report.table(rows))
+    print(f'\nbench: wrote {markdown} and {", ".join(p.name for p in plots)}')
+
+
+if __name__ == '__main__':
+    main()

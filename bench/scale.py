@@ -1,0 +1,132 @@
+"""Many turtles: pose rate per turtle, tick cost, missed ticks; the controller under that load."""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+
+from geometry_msgs.msg import Twist
+from service_msgs.msg import ServiceEventInfo
+from turtlesim.msg import Pose
+from turtlesim.srv import SetPen, Spawn
+
+from common import Row, Session, verdict
+
+COUNTS = (1, 50, 200, 500)
+MEASURE_S = 10.0
+SAMPLED_TURTLES = 8
+TARGET_HZ = 62.5
+CONTROLLER_AT = 200
+
+
+def _grid_positions(count: int) -> list[tuple[float, float]]:
+    """Spread start points over the middle of the canvas, away from the walls."""
+    side = max(1, math.ceil(math.sqrt(count)))
+    step = 6.0 / side
+    return [(2.5 + step * (i % side), 2.5 + step * (i // side)) for i in range(count)]
+
+
+def _spawn_all(probe, count: int) -> list[str]:
+    client = probe.node.create_client(Spawn, '/spawn')
+    if not client.wait_for_service(timeout_sec=15.0):
+        raise RuntimeError('/spawn did not appear')
+    futures = [client.call_async(Spawn.Request(x=x, y=y, theta=0.0, name=''))
+               for x, y in _grid_positions(count)]
+    deadline = time.monotonic() + 120.0
+    while not all(f.done() for f in futures) and time.monotonic() < deadline:
+        probe.executor.spin_once(timeout_sec=0.1)
+    names = [f.result().name for f in futures if f.done()]
+    if len(names) != count or '' in names:
+        raise RuntimeError(f'spawned {len(names)} of {count} turtles')
+    return names
+
+
+def run_one(session: Session, count: int) -> dict:
+    stats_path = session.log_dir / f'tick-stats-{count}.json'
+    with_controller = count == CONTROLLER_AT
+    args = ['--headless', '--tick-stats', str(stats_path)]
+    if with_controller:
+        args += ['--service-introspection', 'metadata']
+    sim = session.start('turtlesim', 'turtlesim_node', *args)
+    sim.wait_for_output(r'Spawning turtle')
+    probe = session.probe(f'bench_scale_{count}')
+    try:
+        names = ['turtle1', *_spawn_all(probe, count - 1)]
+        driven = names[1:] if with_controller else names
+        publishers = [probe.node.create_publisher(Twist, f'/{n}/cmd_vel', 7) for n in driven]
+        circle = Twist()
+        circle.linear.x, circle.angular.z = 1.0, 1.0
+        # Two commands a second keep every turtle inside turtlesim's 1 s command timeout.
+        probe.node.create_timer(0.5, lambda: [p.publish(circle) for p in publishers])
+
+        sampled = names[:: max(1, len(names) // SAMPLED_TURTLES)][:SAMPLED_TURTLES]
+        counts = {n: 0 for n in sampled}
+        for name in sampled:
+            probe.node.create_subscription(
+                Pose, f'/{name}/pose', lambda _m, n=name: counts.__setitem__(n, counts[n] + 1), 7)
+
+        crossings, calls = [0], [0]
+        if with_controller:
+            session.start('my_robot_controller', 'turtle_controller')
+            last_side = [None]
+
+            def on_turtle1_pose(pose: Pose) -> None:
+                side = pose.x >= 5.5
+                if last_side[0] is not None and side != last_side[0]:
+                    crossings[0] += 1
+                last_side[0] = side
+
+            def on_set_pen_event(event) -> None:
+                if event.info.event_type == ServiceEventInfo.REQUEST_RECEIVED:
+                    calls[0] += 1
+
+            probe.node.create_subscription(Pose, '/turtle1/pose', on_turtle1_pose, 7)
+            probe.node.create_subscription(SetPen.Event, '/turtle1/set_pen/_service_event',
+                                           on_set_pen_event, 100)
+        probe.spin_for(2.0)  # let every turtle start moving and discovery settle
+        for name in counts:
+            counts[name] = 0
+        calls_before, crossings[0] = calls[0], 0
+        probe.spin_for(MEASURE_S)
+        rates = [c / MEASURE_S for c in counts.values()]
+        calls_during = calls[0] - calls_before
+    finally:
+        probe.close()
+        sim.stop(timeout=20.0)
+    stats = json.loads(stats_path.read_text())
+    return {
+        'count': count, 'rate_min': min(rates), 'rate_mean': sum(rates) / len(rates),
+        'tick_mean_ms': stats['cost_mean_ms'], 'tick_p99_ms': stats['cost_p99_ms'],
+        'missed': stats['missed_ticks'], 'ticks': stats['ticks'],
+        'crossings': crossings[0] if with_controller else None,
+        'set_pen_calls': calls_during if with_controller else None,
+    }
+
+
+def run(session: Session, counts: tuple[int, ...] = COUNTS) -> tuple[list[Row], dict]:
+    results = []
+    for count in counts:
+        try:
+            results.append(run_one(session, count))
+        except (RuntimeError, TimeoutError, OSError, KeyError, ValueError) as error:
+            results.append({'count': count, 'error': str(error)})
+    rows = []
+    for r in results:
+        if 'error' in r:
+            rows.append(Row('scale', f'{r["count"]} turtles', f'failed: {r["error"]}'))
+            continue
+        on_target = abs(r['rate_min'] - TARGET_HZ) <= 0.5 and r['missed'] == 0
+        rows.append(Row(
+            'scale', f'{r["count"]} turtles: pose Hz min/mean, tick mean/p99, missed',
+            f'{r["rate_min"]:.2f}/{r["rate_mean"]:.2f} Hz, {r["tick_mean_ms"]:.2f}/'
+            f'{r["tick_p99_ms"]:.2f} ms, {r["missed"]} of {r["ticks"]}',
+            '62.5 +- 0.5 Hz, 0 missed' if r['count'] == 200 else '',
+            verdict(on_target) if r['count'] == 200 else ('holds' if on_target else 'breaks')))
+        if r['crossings'] is not None:
+            per = r['set_pen_calls'] / r['crossings'] if r['crossings'] else float('nan')
+            rows.append(Row('controller under load',
+                            f'{r["count"]} turtles: crossings, set_pen calls, calls/crossing',
+                            f'{r["crossings"]}, {r["set_pen_calls"]}, {per:.2f}', '1.00',
+                            verdict(r['crossings'] > 0 and r['set_pen_calls'] == r['crossings'])))
+    return rows, {'scale': results}
