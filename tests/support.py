@@ -189,3 +189,54 @@ class Background:
     def __exit__(self, *exc: object) -> None:
         self._stop.set()
         self._thread.join(timeout=5)
+
+
+# --- turtle_controller tests ------------------------------------------------------------------
+
+def turtle_qos() -> Any:
+    """turtlesim's QoS for turtle topics (keep-last 7, reliable, volatile)."""
+    from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+    return QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=7,
+                      reliability=ReliabilityPolicy.RELIABLE,
+                      durability=DurabilityPolicy.VOLATILE)
+
+
+def collect_stamped(probe: TestNode, msg_type: Any, topic: str,
+                    qos: Any = None) -> list[tuple[float, Any]]:
+    """Like TestNode.collect, but each message comes with its wall-clock arrival time."""
+    received: list[tuple[float, Any]] = []
+    probe.node.create_subscription(
+        msg_type, topic, lambda msg: received.append((time.time(), msg)),
+        turtle_qos() if qos is None else qos)
+    return received
+
+
+def stand_in_argv(*args: str) -> list[str]:
+    """Command line of tests/turtle_stand_in.py (a scripted turtle1 with a slow set_pen)."""
+    import sys
+    return [sys.executable, str(REPO / 'tests' / 'turtle_stand_in.py'), *args]
+
+
+# --- ros2 CLI tests (tests/test_cli_*.py) -------------------------------------------------------
+
+def ros2(env: dict[str, str], *args: str, timeout: float = 30.0,
+         stdin: str | None = None) -> subprocess.CompletedProcess[str]:
+    """Run the workspace's `ros2` command to completion and capture its output."""
+    return subprocess.run(['ros2', *args], env=env, capture_output=True, text=True,
+                          timeout=timeout, input=stdin,
+                          stdin=None if stdin is not None else subprocess.DEVNULL)
+
+
+def cli_test_node_argv() -> list[str]:
+    """Command line of tests/cli_test_node.py (services, a topic and parameters to inspect)."""
+    import sys
+    return [sys.executable, str(REPO / 'tests' / 'cli_test_node.py')]
+
+
+def wait_until(predicate: Callable[[], bool], timeout: float, what: str) -> None:
+    """Poll `predicate` (while a Background spinner receives messages); fail after timeout."""
+    deadline = time.monotonic() + timeout
+    while not predicate():
+        if time.monotonic() > deadline:
+            raise AssertionError(f'timed out after {timeout} s waiting for {what}')
+        time.sleep(0.02)

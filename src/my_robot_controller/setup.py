@@ -20,6 +20,8 @@ setup(
         'console_scripts': [
             'add_two_ints_server = my_robot_controller.add_two_ints_server:main',
             'add_two_ints_client = my_robot_controller.add_two_ints_client:main',
+            'turtle_controller = my_robot_controller.turtle_controller:main',
+            'turtle_demo = my_robot_controller.demo_launch:main',
         ],
     },
 )

@@ -1,0 +1,332 @@
+"""Helpers shared by every command: the CLI node, graph discovery, interface types, YAML.
+
+Heavy modules (rclpy, yaml, the generated interfaces) are imported inside the functions that
+need them, so `ros2 interface show` or `ros2 run` never pay for DDS.
+"""
+
+from __future__ import annotations
+
+import importlib
+import os
+import sys
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from typing import Any
+
+NODE_NAME_PREFIX = '_ros2cli'
+
+
+class CliError(Exception):
+    """A verb failed: the message goes to stderr and `ros2` exits with 1."""
+
+
+def is_hidden(name: str) -> bool:
+    """A topic/service name is hidden when any of its `/` tokens starts with `_`."""
+    return any(token.startswith('_') for token in name.split('/'))
+
+
+def is_hidden_node(name: str) -> bool:
+    return name.startswith('_')
+
+
+def full_node_name(name: str, namespace: str) -> str:
+    return namespace.rstrip('/') + '/' + name
+
+
+# --------------------------------------------------------------------------------------
+# The CLI node and graph discovery
+# --------------------------------------------------------------------------------------
+
+@contextmanager
+def cli_node(name: str | None = None) -> Iterator[Any]:
+    """A hidden node `_ros2cli_<pid>` in a fresh context, torn down on exit."""
+    import rclpy
+    from rclpy.context import Context
+    from rclpy.parameter import Parameter
+
+    context = Context()
+    rclpy.init(args=[], context=context)
+    # No parameter or type-description services: the CLI node offers nothing to the graph.
+    node = rclpy.create_node(
+        name or f'{NODE_NAME_PREFIX}_{os.getpid()}', context=context,
+        start_parameter_services=False,
+        parameter_overrides=[Parameter('start_type_description_service', value=False)])
+    try:
+        yield node
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
+
+
+def spin_once(node: Any, timeout: float) -> None:
+    """Process pending callbacks of `node` for at most `timeout` seconds."""
+    executor = getattr(node, '_cli_executor', None)
+    if executor is None:
+        from rclpy.executors import SingleThreadedExecutor
+        executor = SingleThreadedExecutor(context=node.context)
+        executor.add_node(node)
+        node._cli_executor = executor
+    executor.spin_once(timeout_sec=timeout)
+
+
+def graph_snapshot(node: Any) -> tuple:
+    return (
+        tuple(sorted(node.get_node_names_and_namespaces())),
+        tuple((n, tuple(t)) for n, t in node.get_topic_names_and_types()),
+        tuple((n, tuple(t)) for n, t in node.get_service_names_and_types()),
+    )
+
+
+def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: float = 0.4,
+                   bound: float = 2.0) -> bool:
+    """Let discovery run until the graph has stopped changing for `settle` seconds.
+
+    Without a daemon a fresh node knows nothing: poll the graph (cheap, local caches) and return
+    once it is stable and complete and, if given, `ready()` holds; never later than `bound`
+    seconds. Complete means another node is known and every node's endpoints have arrived (a
+    node's name and its endpoints are discovered separately, sometimes far apart under load).
+    Returns whether `ready()` held.
+    """
+    start = time.monotonic()
+    own = node.get_fully_qualified_name()
+    last = None
+    changed = start
+    while True:
+        now = time.monotonic()
+        snapshot = graph_snapshot(node)
+        others = [(n, ns) for n, ns in snapshot[0] if full_node_name(n, ns) != own]
+        complete = bool(others) and all(
+            node.get_publisher_names_and_types_by_node(n, ns)
+            or node.get_service_names_and_types_by_node(n, ns) for n, ns in others)
+        snapshot = (*snapshot, complete)
+        if snapshot != last:
+            last, changed = snapshot, now
+        ok = ready() if ready is not None else True
+        if ok and complete and now - changed >= settle:
+            return True
+        if now - start >= bound:
+            return ok
+        time.sleep(0.02)
+
+
+def wait_until(predicate: Callable[[], bool], timeout: float, step: float = 0.02) -> bool:
+    deadline = time.monotonic() + timeout
+    while not predicate():
+        if time.monotonic() >= deadline:
+            return False
+        time.sleep(step)
+    return True
+
+
+# --------------------------------------------------------------------------------------
+# Interface types
+# --------------------------------------------------------------------------------------
+
+def import_type(name: str, kind: str) -> Any:
+    """The generated class for 'pkg/kind/Name' or 'pkg/Name' (kind = msg, srv or action)."""
+    parts = name.split('/')
+    if len(parts) == 2:
+        parts = [parts[0], kind, parts[1]]
+    if len(parts) != 3 or not all(parts) or parts[1] != kind:
+        raise ValueError(name)
+    try:
+        module = importlib.import_module(f'{parts[0]}.{parts[1]}')
+        return getattr(module, parts[2])
+    except (ImportError, AttributeError, ValueError):
+        raise ValueError(name) from None
+
+
+def type_name(msg_class: Any) -> str:
+    """'pkg/msg/Name' of a generated class (services: 'pkg/srv/Name_Request')."""
+    module = msg_class.__module__.split('.')
+    return f'{module[0]}/{module[1]}/{msg_class.__name__}'
+
+
+# --------------------------------------------------------------------------------------
+# Message -> plain data / YAML
+# --------------------------------------------------------------------------------------
+
+def message_to_ordered(msg: Any) -> dict:
+    return {field: _plain(getattr(msg, field)) for field in msg.get_fields_and_field_types()}
+
+
+def _plain(value: Any) -> Any:
+    if isinstance(value, (bool, int, float, str)):
+        return value
+    if isinstance(value, bytes):
+        return ''.join(chr(c) for c in value)
+    if isinstance(value, (list, tuple)) or type(value).__name__ in ('array', 'ndarray'):
+        return [_plain(v) for v in value]
+    if hasattr(value, 'get_fields_and_field_types'):
+        return message_to_ordered(value)
+    if hasattr(value, 'item'):  # numpy scalar
+        return value.item()
+    return value
+
+
+def _dumper() -> Any:
+    import yaml
+
+    class OrderedDumper(yaml.SafeDumper):
+        pass
+
+    def represent_dict(dumper: Any, data: dict) -> Any:
+        return dumper.represent_mapping('tag:yaml.org,2002:map', data.items())
+
+    OrderedDumper.add_representer(dict, represent_dict)
+    return OrderedDumper
+
+
+def to_yaml(data: Any, flow_style: bool = False) -> str:
+    """PyYAML block style in field order, as rosidl_runtime_py's message_to_yaml."""
+    import yaml
+    return yaml.dump(data, Dumper=_dumper(), allow_unicode=True, width=sys.maxsize,
+                     default_flow_style=flow_style)
+
+
+def message_to_yaml(msg: Any, flow_style: bool = False) -> str:
+    return to_yaml(message_to_ordered(msg), flow_style)
+
+
+# --------------------------------------------------------------------------------------
+# YAML -> message, with validation
+# --------------------------------------------------------------------------------------
+
+def load_values(text: str) -> Any:
+    """Parse YAML where mapping keys are always strings: `{off: 1}` is the field `off`.
+
+    PyYAML follows YAML 1.1, where an unquoted `off`/`on`/`yes`/`no` is a boolean; as a key
+    that would never match a field name. Values keep the usual resolution.
+    """
+    import yaml
+
+    class KeysAsStrings(yaml.SafeLoader):
+        def construct_mapping(self, node: Any, deep: bool = False) -> dict:
+            if isinstance(node, yaml.MappingNode):
+                self.flatten_mapping(node)
+            mapping = {}
+            for key_node, value_node in node.value:
+                if isinstance(key_node, yaml.ScalarNode):
+                    key = key_node.value
+                else:
+                    key = self.construct_object(key_node, deep=deep)
+                mapping[key] = self.construct_object(value_node, deep=deep)
+            return mapping
+
+    KeysAsStrings.add_constructor('tag:yaml.org,2002:map', KeysAsStrings.construct_yaml_map)
+    try:
+        return yaml.load(text, Loader=KeysAsStrings)
+    except yaml.YAMLError as error:
+        raise CliError(f'The passed value is not valid YAML: {error}') from None
+
+
+INTEGER_RANGES = {
+    'int8': (-(2**7), 2**7 - 1), 'uint8': (0, 2**8 - 1), 'byte': (0, 2**8 - 1),
+    'int16': (-(2**15), 2**15 - 1), 'uint16': (0, 2**16 - 1),
+    'int32': (-(2**31), 2**31 - 1), 'uint32': (0, 2**32 - 1),
+    'int64': (-(2**63), 2**63 - 1), 'uint64': (0, 2**64 - 1),
+}
+FLOAT32_MAX = 3.4028234663852886e38
+FLOAT_TYPES = ('float', 'double', 'float32', 'float64', 'long double')
+
+
+class FieldError(ValueError):
+    pass
+
+
+def fill_message(msg: Any, values: Any, prefix: str = '') -> None:
+    """Set the fields of `msg` from a mapping, refusing anything the field cannot hold."""
+    if not isinstance(values, dict):
+        raise FieldError(f"'{prefix or type_name(type(msg))}' expects a mapping of field names "
+                         f'to values, got {_show(values)}')
+    fields = list(msg.get_fields_and_field_types())
+    slot_types = dict(zip(fields, msg.SLOT_TYPES, strict=True))
+    for key, value in values.items():
+        path = f'{prefix}{key}'
+        if key not in slot_types:
+            allowed = ', '.join(fields) if fields else 'none'
+            raise FieldError(f"'{path}' is not a field of {type_name(type(msg))} "
+                             f'(fields: {allowed})')
+        current = getattr(msg, key)
+        setattr(msg, key, _convert(slot_types[key], value, current, path))
+
+
+def _show(value: Any) -> str:
+    if value is None:
+        return 'nothing (null)'
+    return repr(value)
+
+
+def _convert(slot_type: Any, value: Any, current: Any, path: str) -> Any:
+    from rosidl_parser import definition as d
+
+    if isinstance(slot_type, d.AbstractNestedType):
+        if not isinstance(value, list):
+            raise FieldError(f"'{path}' must be a list, got {_show(value)}")
+        if isinstance(slot_type, d.Array) and len(value) != slot_type.size:
+            raise FieldError(f"'{path}' must have exactly {slot_type.size} elements, "
+                             f'got {len(value)}')
+        if isinstance(slot_type, d.BoundedSequence) and len(value) > slot_type.maximum_size:
+            raise FieldError(f"'{path}' can hold at most {slot_type.maximum_size} elements, "
+                             f'got {len(value)}')
+        element = slot_type.value_type
+        if isinstance(element, d.NamespacedType):
+            cls = _namespaced_class(element)
+            return [_convert(element, v, cls(), f'{path}[{i}]') for i, v in enumerate(value)]
+        return [_convert(element, v, None, f'{path}[{i}]') for i, v in enumerate(value)]
+    if isinstance(slot_type, d.NamespacedType):
+        target = current if current is not None else _namespaced_class(slot_type)()
+        fill_message(target, value, prefix=f'{path}.')
+        return target
+    if isinstance(slot_type, (d.AbstractString, d.AbstractWString)):
+        if not isinstance(value, str):
+            raise FieldError(f"'{path}' must be a string, got {_show(value)} "
+                             "(quote it, e.g. '\"123\"')")
+        limit = getattr(slot_type, 'maximum_size', None)
+        if isinstance(limit, int) and len(value) > limit:
+            raise FieldError(f"'{path}' can hold at most {limit} characters, got {len(value)}")
+        return value
+    name = getattr(slot_type, 'typename', None)
+    if name == 'boolean':
+        if not isinstance(value, bool):
+            raise FieldError(f"'{path}' must be a boolean (true or false), got {_show(value)}")
+        return value
+    if name in INTEGER_RANGES:
+        low, high = INTEGER_RANGES[name]
+        if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+            raise FieldError(f"'{path}' must be an integer in [{low}, {high}], got {_show(value)}")
+        return value if name != 'byte' else bytes([value])
+    if name in FLOAT_TYPES:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise FieldError(f"'{path}' must be a number, got {_show(value)}")
+        number = float(value)
+        if name == 'float32' and abs(number) > FLOAT32_MAX and number != float('inf') \
+                and number != float('-inf'):
+            raise FieldError(f"'{path}' must be a float32 in [-{FLOAT32_MAX:g}, "
+                             f'{FLOAT32_MAX:g}], got {_show(value)}')
+        return number
+    if name in ('char', 'wchar'):
+        if isinstance(value, str) and len(value) == 1:
+            return value
+        raise FieldError(f"'{path}' must be a single character, got {_show(value)}")
+    return value
+
+
+def _namespaced_class(slot_type: Any) -> Any:
+    module = importlib.import_module('.'.join(slot_type.namespaces))
+    return getattr(module, slot_type.name)
+
+
+def populate(msg: Any, text: str) -> Any:
+    """Fill `msg` from a YAML mapping; CliError('Failed to populate field: ...') on bad input."""
+    values = load_values(text)
+    if values is None or values == '':
+        values = {}
+    if not isinstance(values, dict):
+        raise CliError('The passed value needs to be a dictionary in YAML format')
+    try:
+        fill_message(msg, values)
+    except FieldError as error:
+        raise CliError(f'Failed to populate field: {error}') from None
+    return msg

@@ -1,0 +1,241 @@
+"""ros2 param: list, get, set, describe (through the node's rcl_interfaces services)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+TYPE_NAMES = {
+    0: 'not set', 1: 'boolean', 2: 'integer', 3: 'double', 4: 'string', 5: 'byte array',
+    6: 'boolean array', 7: 'integer array', 8: 'double array', 9: 'string array',
+}
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    verbs = parser.add_subparsers(title='Commands', metavar='Call')
+
+    def verb(name: str, func, help_text: str) -> argparse.ArgumentParser:
+        p = verbs.add_parser(name, help=help_text, description=help_text)
+        p.add_argument('--spin-time', type=float, default=None, help=argparse.SUPPRESS)
+        p.add_argument('-s', '--use-sim-time', action='store_true', help=argparse.SUPPRESS)
+        p.add_argument('--no-daemon', action='store_true',
+                       help='Do not spawn nor use an already running daemon (always the case)')
+        p.add_argument('--include-hidden-nodes', action='store_true',
+                       help='Consider hidden nodes as well')
+        p.set_defaults(_main=func)
+        return p
+
+    p = verb('list', list_verb, 'Output a list of available parameters')
+    p.add_argument('node_name', nargs='?', help='Name of the ROS node')
+    p.add_argument('--param-prefixes', nargs='+', default=[],
+                   help='Only list parameters with the provided prefixes')
+    p.add_argument('--param-type', action='store_true',
+                   help='Print parameter types with parameter names')
+    p = verb('get', get_verb, 'Get parameter')
+    p.add_argument('node_name', help='Name of the ROS node')
+    p.add_argument('parameter_name', help='Name of the parameter')
+    p.add_argument('--hide-type', action='store_true', help='Hide the type information')
+    p = verb('set', set_verb, 'Set parameter')
+    p.add_argument('node_name', help='Name of the ROS node')
+    p.add_argument('parameter_name', help='Name of the parameter')
+    p.add_argument('value', help='Value of the parameter')
+    p.add_argument('--timeout', metavar='N', type=int, default=1,
+                   help='Wait for N seconds until node becomes available (default %(default)s '
+                   'sec)')
+    p = verb('describe', describe_verb, 'Show descriptive information about declared parameters')
+    p.add_argument('node_name', help='Name of the ROS node')
+    p.add_argument('parameter_names', nargs='+', help='Names of the parameters')
+
+
+def absolute(name: str | None) -> str | None:
+    if not name:
+        return None
+    return name if name.startswith('/') else '/' + name
+
+
+def _nodes(node, include_hidden: bool) -> list[str]:
+    from ros2cli_lite.command.node import node_names
+    return [n[0] for n in node_names(node, include_hidden)]
+
+
+def _find_node(node, args: argparse.Namespace) -> str | None:
+    from ros2cli_lite.api import wait_for_graph
+    target = absolute(args.node_name)
+    wait_for_graph(node, ready=lambda: target in _nodes(node, args.include_hidden_nodes),
+                   settle=0.1, bound=max(2.0, float(getattr(args, 'timeout', 0) or 0)))
+    return target if target in _nodes(node, args.include_hidden_nodes) else None
+
+
+def _call(node, srv_type, service: str, request, timeout: float = 5.0):
+    from ros2cli_lite.api import CliError, spin_once
+    client = node.create_client(srv_type, service)
+    if not client.wait_for_service(timeout_sec=timeout):
+        raise CliError(f"Service '{service}' not available: the node has no parameter services")
+    future = client.call_async(request)
+    while not future.done():
+        spin_once(node, 0.1)
+    if future.exception() is not None:
+        raise CliError(f'Exception while calling service of node: {future.exception()}')
+    return future.result()
+
+
+def list_verb(args: argparse.Namespace) -> int | str:
+    from rcl_interfaces.srv import DescribeParameters, ListParameters
+
+    from ros2cli_lite.api import cli_node, wait_for_graph
+    with cli_node() as node:
+        if args.node_name:
+            target = _find_node(node, args)
+            if target is None:
+                return 'Node not found'
+            targets = [target]
+        else:
+            wait_for_graph(node)
+            targets = _nodes(node, args.include_hidden_nodes)
+        services = dict(node.get_service_names_and_types())
+        for target in sorted(targets):
+            service = f'{target}/list_parameters'
+            if args.node_name:
+                wait_for_graph(node, ready=lambda s=service: s in dict(
+                    node.get_service_names_and_types()), settle=0.0)
+                services = dict(node.get_service_names_and_types())
+            if service not in services:
+                continue
+            request = ListParameters.Request()
+            request.prefixes = list(args.param_prefixes)
+            response = _call(node, ListParameters, service, request)
+            names = sorted(response.result.names)
+            if not args.node_name:
+                print(f'{target}:')
+            types = {}
+            if args.param_type:
+                described = _call(node, DescribeParameters, f'{target}/describe_parameters',
+                                  DescribeParameters.Request(names=names))
+                types = {d.name: TYPE_NAMES.get(d.type, 'unknown type')
+                         for d in described.descriptors}
+            for name in names:
+                print(f'  {name} (type: {types[name]})' if args.param_type else f'  {name}')
+    return 0
+
+
+LABELS = {
+    1: ('Boolean value is:', 'bool_value'), 2: ('Integer value is:', 'integer_value'),
+    3: ('Double value is:', 'double_value'), 4: ('String value is:', 'string_value'),
+    5: ('Byte values are:', 'byte_array_value'), 6: ('Boolean values are:', 'bool_array_value'),
+    7: ('Integer values are:', 'integer_array_value'),
+    8: ('Double values are:', 'double_array_value'),
+    9: ('String values are:', 'string_array_value'),
+}
+
+
+def get_verb(args: argparse.Namespace) -> int | str:
+    from rcl_interfaces.srv import GetParameters
+
+    from ros2cli_lite.api import cli_node
+    with cli_node() as node:
+        target = _find_node(node, args)
+        if target is None:
+            return 'Node not found'
+        response = _call(node, GetParameters, f'{target}/get_parameters',
+                         GetParameters.Request(names=[args.parameter_name]))
+    if not response.values:
+        return 'Parameter not set'
+    value = response.values[0]
+    if value.type == 0:
+        print('Parameter not set.' if not args.hide_type else None)
+        return 0
+    if value.type not in LABELS:
+        return f"Unknown parameter type '{value.type}'"
+    label, attribute = LABELS[value.type]
+    data = getattr(value, attribute)
+    if value.type >= 5:
+        data = list(data) if value.type != 5 else [bytes([b]) if isinstance(b, int) else b
+                                                   for b in data]
+    print(data if args.hide_type else f'{label} {data}')
+    return 0
+
+
+def parameter_value(text: str):
+    """A ParameterValue from a command-line string, typed as YAML reads it (as ros2cli)."""
+    import yaml
+    from rcl_interfaces.msg import ParameterValue
+    value = ParameterValue()
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError:
+        data = text
+    if isinstance(data, bool):
+        value.type, value.bool_value = 1, data
+    elif isinstance(data, int):
+        value.type, value.integer_value = 2, data
+    elif isinstance(data, float):
+        value.type, value.double_value = 3, data
+    elif isinstance(data, list) and all(isinstance(v, bool) for v in data):
+        value.type, value.bool_array_value = 6, data
+    elif isinstance(data, list) and all(isinstance(v, int) and not isinstance(v, bool)
+                                        for v in data):
+        value.type, value.integer_array_value = 7, data
+    elif isinstance(data, list) and all(isinstance(v, float) for v in data):
+        value.type, value.double_array_value = 8, data
+    elif isinstance(data, list) and all(isinstance(v, str) for v in data):
+        value.type, value.string_array_value = 9, data
+    elif isinstance(data, str):
+        value.type, value.string_value = 4, data
+    else:
+        value.type, value.string_value = 4, text
+    return value
+
+
+def set_verb(args: argparse.Namespace) -> int | str:
+    from rcl_interfaces.msg import Parameter
+    from rcl_interfaces.srv import SetParameters
+
+    from ros2cli_lite.api import INTEGER_RANGES, cli_node
+    value = parameter_value(args.value)
+    low, high = INTEGER_RANGES['int64']
+    if value.type == 2 and not low <= value.integer_value <= high:
+        return f'Value {args.value} does not fit a 64-bit integer parameter [{low}, {high}]'
+    with cli_node() as node:
+        target = _find_node(node, args)
+        if target is None:
+            return 'Node not found'
+        request = SetParameters.Request(
+            parameters=[Parameter(name=args.parameter_name, value=value)])
+        response = _call(node, SetParameters, f'{target}/set_parameters', request)
+    result = response.results[0]
+    if result.successful:
+        print('Set parameter successful' + (f': {result.reason}' if result.reason else ''))
+    else:
+        print('Setting parameter failed' + (f': {result.reason}' if result.reason else ''),
+              file=sys.stderr)
+    return 0
+
+
+def describe_verb(args: argparse.Namespace) -> int | str:
+    from rcl_interfaces.srv import DescribeParameters
+
+    from ros2cli_lite.api import cli_node
+    with cli_node() as node:
+        target = _find_node(node, args)
+        if target is None:
+            return 'Node not found'
+        response = _call(node, DescribeParameters, f'{target}/describe_parameters',
+                         DescribeParameters.Request(names=args.parameter_names))
+    for descriptor in response.descriptors:
+        print('Parameter name:', descriptor.name)
+        print('  Type:', TYPE_NAMES.get(descriptor.type, 'unknown type'))
+        if descriptor.description:
+            print('  Description:', descriptor.description)
+        ranges = list(descriptor.floating_point_range) + list(descriptor.integer_range)
+        if (descriptor.read_only or ranges or descriptor.additional_constraints):
+            print('  Constraints:')
+            if descriptor.read_only:
+                print('    Read only: true')
+            if ranges:
+                print('    Min value:', ranges[0].from_value)
+                print('    Max value:', ranges[0].to_value)
+                if ranges[0].step:
+                    print('    Step:', ranges[0].step)
+            if descriptor.additional_constraints:
+                print('    Additional constraints:', descriptor.additional_constraints)
+    return 0

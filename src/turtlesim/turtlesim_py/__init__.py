@@ -1,0 +1,4 @@
+"""Python implementation of the turtlesim simulator and its tutorial executables.
+
+The generated interface package is called `turtlesim`; this code lives in `turtlesim_py`.
+"""

@@ -1,0 +1,310 @@
+"""The turtlesim node: canvas, clock/tick, global services and parameters."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import time
+from array import array
+from pathlib import Path
+
+from rcl_interfaces.msg import (
+    IntegerRange,
+    ParameterDescriptor,
+    ParameterEvent,
+    ParameterType,
+    SetParametersResult,
+)
+from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
+from rclpy.exceptions import InvalidParameterTypeException, InvalidParameterValueException
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from rclpy.qos import QoSProfile, qos_profile_sensor_data, qos_profile_services_default
+from rclpy.service import Service
+from rclpy.service_introspection import ServiceIntrospectionState
+from std_srvs.srv import Empty, Trigger
+
+from turtlesim.srv import Kill, Spawn
+from turtlesim_py import sim
+from turtlesim_py.canvas import Canvas
+from turtlesim_py.turtle import Turtle
+
+BACKGROUND = (('background_r', 69, 'Red channel of the background color'),
+              ('background_g', 86, 'Green channel of the background color'),
+              ('background_b', 255, 'Blue channel of the background color'))
+INTROSPECTION = {'off': ServiceIntrospectionState.OFF,
+                 'metadata': ServiceIntrospectionState.METADATA,
+                 'contents': ServiceIntrospectionState.CONTENTS}
+# A turtle name becomes a relative name prefix (`<name>/cmd_vel`): tokens of letters, digits
+# and underscores, not starting with a digit, no repeated underscores (ROS name rules).
+NAME_TOKEN = r'[A-Za-z_][A-Za-z0-9_]*'
+TURTLE_NAME = re.compile(rf'{NAME_TOKEN}(/{NAME_TOKEN})*')
+PARAMETER_EVENT_QOS = QoSProfile(depth=100, history=qos_profile_sensor_data.history,
+                                 reliability=qos_profile_sensor_data.reliability,
+                                 durability=qos_profile_sensor_data.durability)
+
+
+def turtle_name_problem(name: str) -> str | None:
+    """Why `name` cannot name a turtle, or None when it can."""
+    if not TURTLE_NAME.fullmatch(name):
+        return ('allowed: letters, digits and underscores in /-separated tokens that do not '
+                'start with a digit')
+    if '__' in name:
+        return 'allowed: no repeated underscores'
+    return None
+
+
+class TurtleFrame(Node):
+    def __init__(self, *, canvas_png: str = 'turtlesim_canvas.png', fixed_step: bool = False,
+                 introspection: str = 'off') -> None:
+        super().__init__('turtlesim')
+        self.canvas_png = Path(canvas_png).absolute()
+        self.fixed_step = fixed_step
+        self.introspection = INTROSPECTION[introspection]
+        self.canvas = Canvas()
+        self.turtles: dict[str, Turtle] = {}
+        self._order: list[Turtle] = []
+        self._deferred: list = []
+        self.id_counter = 0
+        self.dirty = True
+        self._last_tick: float | None = None
+        self.sim_time_ns = 0
+        self.tick_costs = array('d')  # seconds of work per tick, for --tick-stats
+        self.missed_ticks = 0
+
+        rng = IntegerRange(from_value=0, to_value=255, step=1)
+        for name, default, description in BACKGROUND:
+            self._declare(name, default, ParameterDescriptor(
+                type=ParameterType.PARAMETER_INTEGER, description=description,
+                integer_range=[rng]))
+        self._declare('holonomic', False, ParameterDescriptor(
+            type=ParameterType.PARAMETER_BOOL,
+            description='If true, then turtles will be holonomic'))
+        self._holonomic = bool(self.get_parameter('holonomic').value)
+        self.add_post_set_parameters_callback(self._parameters_set)
+        self.create_subscription(ParameterEvent, '/parameter_events', self._on_parameter_event,
+                                 PARAMETER_EVENT_QOS)
+
+        self.create_service(Empty, 'clear', self._on_clear)
+        self.create_service(Empty, 'reset', self._on_reset)
+        self.create_service(Spawn, 'spawn', self._on_spawn)
+        self.create_service(Kill, 'kill', self._on_kill)
+        self.create_service(Trigger, '~/_save_canvas', self._on_save_canvas)
+        self.clock_pub = None
+        if fixed_step:
+            from rosgraph_msgs.msg import Clock
+            self._clock_msg = Clock()
+            self.clock_pub = self.create_publisher(Clock, '/clock', 10)
+        for service in self.services:
+            self.configure_introspection(service)
+
+        self.get_logger().info(
+            f'Starting turtlesim with node name {self.get_fully_qualified_name()}')
+        self.spawn_turtle('', sim.CENTER, sim.CENTER, 0.0)
+        self.timer = self.create_timer(sim.FIXED_DT, self.on_tick)
+
+    # ---------------------------------------------------------------- helpers
+    def configure_introspection(self, service: Service) -> None:
+        if self.introspection == ServiceIntrospectionState.OFF:
+            return
+        try:
+            service.configure_introspection(self.get_clock(), qos_profile_services_default,
+                                            self.introspection)
+        except _rclpy.RCLError as error:
+            # get_type_description is served by rcl itself; its Python type has no support
+            # for introspection events.
+            self.get_logger().debug(f'No introspection for {service.srv_name}: {error}')
+
+    def now_seconds(self) -> float:
+        """Time for the cmd_vel timeout: simulated time with --fixed-step, else ROS time."""
+        if self.fixed_step:
+            return self.sim_time_ns * 1e-9
+        return self.get_clock().now().nanoseconds * 1e-9
+
+    def holonomic(self) -> bool:
+        return self._holonomic
+
+    def background(self) -> tuple[int, int, int]:
+        return tuple(int(self.get_parameter(name).value) for name, _, _ in BACKGROUND)
+
+    # ---------------------------------------------------------------- parameters
+    def _declare(self, name: str, default, descriptor: ParameterDescriptor) -> None:
+        """Declare; a bad command-line override (-p name:=value) falls back to the default."""
+        try:
+            self.declare_parameter(name, default, descriptor)
+        except (InvalidParameterValueException, InvalidParameterTypeException):
+            self.get_logger().error(f'Ignoring the command-line value of {name}; '
+                                    f'using the default {default!r}')
+            self.declare_parameter(name, default, descriptor, ignore_override=True)
+
+    def _apply_descriptors(self, parameter_list, descriptors, check_read_only=True):
+        # rclpy checks types and ranges here, before any on-set callback, with a terse reason
+        # and no log. Validate first so a refusal names the field and the allowed values and
+        # is logged as an ERROR; rclpy's own checks still run after ours.
+        result = self._validate_parameters(parameter_list)
+        if not result.successful:
+            return result
+        return super()._apply_descriptors(parameter_list, descriptors, check_read_only)
+
+    def _validate_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
+        for parameter in parameters:
+            reason = None
+            if parameter.name.startswith('background_'):
+                value = parameter.value
+                if parameter.type_ != Parameter.Type.INTEGER:
+                    reason = (f'parameter {parameter.name} must be an integer in 0..255, '
+                              f'got {parameter.type_.name.lower()} {value!r}')
+                elif not 0 <= value <= 255:
+                    reason = f'parameter {parameter.name} must be an integer in 0..255, got {value}'
+            elif parameter.name == 'holonomic' and parameter.type_ != Parameter.Type.BOOL:
+                reason = (f'parameter holonomic must be a bool (true or false), '
+                          f'got {parameter.type_.name.lower()} {parameter.value!r}')
+            if reason:
+                self.get_logger().error(f'Refusing to set {reason}')
+                return SetParametersResult(successful=False, reason=reason)
+        return SetParametersResult(successful=True)
+
+    def _parameters_set(self, parameters: list[Parameter]) -> None:
+        for parameter in parameters:
+            if parameter.name == 'holonomic':
+                self._holonomic = bool(parameter.value)
+
+    def _on_parameter_event(self, event: ParameterEvent) -> None:
+        if event.node == self.get_fully_qualified_name():
+            self.dirty = True
+
+    # ---------------------------------------------------------------- turtles
+    def spawn_turtle(self, name: str, x: float, y: float, theta: float) -> str:
+        if not name:
+            while True:
+                self.id_counter += 1
+                name = f'turtle{self.id_counter}'
+                if name not in self.turtles:
+                    break
+        elif name in self.turtles:
+            self.get_logger().error(f'A turtle named [{name}] already exists')
+            return ''
+        self.turtles[name] = Turtle(self, name, x, y, theta)
+        self._order = [self.turtles[key] for key in sorted(self.turtles)]
+        self.dirty = True
+        self.get_logger().info(
+            f'Spawning turtle [{name}] at x=[{x:f}], y=[{y:f}], theta=[{theta:f}]')
+        return name
+
+    def kill_turtle(self, name: str) -> None:
+        turtle = self.turtles.pop(name)
+        self._order = [self.turtles[key] for key in sorted(self.turtles)]
+        deferred = turtle.destroy()
+        if deferred is not None:
+            self._deferred.append(deferred)
+        self.dirty = True
+
+    # ---------------------------------------------------------------- services
+    def _on_clear(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
+        self.get_logger().info('Clearing turtlesim.')
+        self.canvas.clear()
+        self.dirty = True
+        return response
+
+    def _on_reset(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
+        self.get_logger().info('Resetting turtlesim.')
+        for name in list(self.turtles):
+            self.kill_turtle(name)
+        self.id_counter = 0
+        self.spawn_turtle('', sim.CENTER, sim.CENTER, 0.0)
+        self.canvas.clear()
+        return response
+
+    def _on_spawn(self, request: Spawn.Request, response: Spawn.Response) -> Spawn.Response:
+        response.name = ''
+        for field in ('x', 'y', 'theta'):
+            value = getattr(request, field)
+            if not math.isfinite(value):
+                self.get_logger().error(
+                    f'Refusing to spawn: {field}={value} is not allowed (allowed: finite numbers)')
+                return response
+        if request.name:
+            problem = turtle_name_problem(request.name)
+            if problem:
+                self.get_logger().error(
+                    f'Refusing to spawn: name={request.name!r} is not a valid ROS name '
+                    f'({problem})')
+                return response
+        response.name = self.spawn_turtle(request.name, request.x, request.y, request.theta)
+        return response
+
+    def _on_kill(self, request: Kill.Request, response: Kill.Response) -> Kill.Response:
+        if request.name in self.turtles:
+            self.kill_turtle(request.name)
+        else:
+            self.get_logger().error(
+                f'Tried to kill turtle [{request.name}], which does not exist')
+        return response
+
+    def _on_save_canvas(self, request: Trigger.Request,
+                        response: Trigger.Response) -> Trigger.Response:
+        try:
+            response.message = self.save_canvas()
+            response.success = True
+        except OSError as error:
+            response.success = False
+            response.message = str(error)
+        return response
+
+    def composite(self):
+        return self.canvas.composite(self.background(), [t.sprite() for t in self._order])
+
+    def save_canvas(self) -> str:
+        image = self.composite()
+        self.canvas_png.parent.mkdir(parents=True, exist_ok=True)
+        if not image.save(str(self.canvas_png), 'PNG'):
+            raise OSError(f'could not write {self.canvas_png}')
+        return str(self.canvas_png)
+
+    # ---------------------------------------------------------------- tick
+    def on_tick(self) -> None:
+        started = time.perf_counter()
+        if self._last_tick is None:
+            self._last_tick = started
+            return
+        if self.fixed_step:
+            dt = sim.FIXED_DT
+            self.sim_time_ns += 16_000_000
+            stamp = self._clock_msg.clock
+            stamp.sec, stamp.nanosec = divmod(self.sim_time_ns, 1_000_000_000)
+            self.clock_pub.publish(self._clock_msg)
+        else:
+            dt = started - self._last_tick
+        if started - self._last_tick > 1.5 * sim.FIXED_DT:
+            self.missed_ticks += round((started - self._last_tick) / sim.FIXED_DT) - 1
+        self._last_tick = started
+        deferred, self._deferred = self._deferred, []
+        for destroy in deferred:
+            destroy()
+        now = self.now_seconds()
+        with self.canvas.lock:
+            for turtle in self._order:
+                try:
+                    turtle.update(dt, now)
+                except Exception as error:  # noqa: BLE001 - one bad turtle must not stop the sim
+                    self.get_logger().error(f'Updating turtle [{turtle.name}] failed: {error!r}')
+            self.canvas.end_drawing()
+        if len(self.tick_costs) < 1_000_000:
+            self.tick_costs.append(time.perf_counter() - started)
+
+    def tick_stats(self) -> dict:
+        costs = sorted(self.tick_costs)
+        ms = [c * 1000.0 for c in costs]
+        return {
+            'ticks': len(ms),
+            'turtles': len(self.turtles),
+            'cost_mean_ms': sum(ms) / len(ms) if ms else 0.0,
+            'cost_p50_ms': ms[len(ms) // 2] if ms else 0.0,
+            'cost_p99_ms': ms[min(len(ms) - 1, int(len(ms) * 0.99))] if ms else 0.0,
+            'cost_max_ms': ms[-1] if ms else 0.0,
+            'missed_ticks': self.missed_ticks,
+        }
+
+    def write_tick_stats(self, path: str) -> None:
+        Path(path).write_text(json.dumps(self.tick_stats(), indent=2) + '\n')

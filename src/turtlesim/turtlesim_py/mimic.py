@@ -1,0 +1,43 @@
+"""mimic: turn the poses of one turtle into velocity commands for another."""
+
+from __future__ import annotations
+
+import sys
+
+import rclpy
+from geometry_msgs.msg import Twist
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+
+from turtlesim.msg import Pose
+from turtlesim_py.turtle import TOPIC_QOS
+
+
+def pose_to_twist(pose: Pose) -> Twist:
+    twist = Twist()
+    twist.linear.x = float(pose.linear_velocity)
+    twist.angular.z = float(pose.angular_velocity)
+    return twist
+
+
+class Mimic(Node):
+    def __init__(self) -> None:
+        super().__init__('turtle_mimic')
+        self.twist_pub = self.create_publisher(Twist, 'output/cmd_vel', TOPIC_QOS)
+        self.create_subscription(Pose, 'input/pose', self._on_pose, TOPIC_QOS)
+
+    def _on_pose(self, pose: Pose) -> None:
+        self.twist_pub.publish(pose_to_twist(pose))
+
+
+def main(argv: list[str] | None = None) -> int:
+    rclpy.init(args=sys.argv if argv is None else argv)
+    node = Mimic()
+    try:
+        rclpy.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0

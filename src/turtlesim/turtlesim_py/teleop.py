@@ -1,0 +1,172 @@
+"""turtle_teleop_key: drive turtle1 from the keyboard (raw terminal, restored on every exit)."""
+
+from __future__ import annotations
+
+import os
+import signal
+import sys
+import termios
+import threading
+from dataclasses import dataclass
+
+import rclpy
+from geometry_msgs.msg import Twist
+from rclpy.action import ActionClient
+from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.signals import SignalHandlerOptions
+
+from turtlesim.action import RotateAbsolute
+from turtlesim_py.turtle import TOPIC_QOS
+
+INSTRUCTIONS = (
+    'Reading from keyboard\n'
+    '---------------------------\n'
+    'Use arrow keys to move the turtle.\n'
+    "Use G|B|V|C|D|E|R|T keys to rotate to absolute orientations. 'F' to cancel a rotation.\n"
+    "'Q' to quit.")
+
+ROTATIONS = {'g': 0.0, 't': 0.7854, 'r': 1.5708, 'e': 2.3562, 'd': 3.1416,
+             'c': -2.3562, 'v': -1.5708, 'b': -0.7854}
+
+
+@dataclass(frozen=True)
+class Command:
+    """What one input byte asks for. kind: move, rotate, cancel, quit."""
+
+    kind: str
+    linear: float = 0.0
+    angular: float = 0.0
+    theta: float = 0.0
+
+
+def decode_key(byte: int) -> Command | None:
+    """Map one input byte to a command (None: ignored). Arrows arrive as ESC [ A..D."""
+    char = chr(byte)
+    if char == 'A':
+        return Command('move', linear=1.0)
+    if char == 'B':
+        return Command('move', linear=-1.0)
+    if char == 'C':
+        return Command('move', angular=-1.0)
+    if char == 'D':
+        return Command('move', angular=1.0)
+    if char in ROTATIONS:
+        return Command('rotate', theta=ROTATIONS[char])
+    if char == 'f':
+        return Command('cancel')
+    if char == 'q':
+        return Command('quit')
+    return None
+
+
+class RawTerminal:
+    """Non-canonical, no-echo stdin (VMIN=0, VTIME=1); the old settings come back on exit."""
+
+    def __init__(self, fd: int) -> None:
+        self.fd = fd
+        self.saved: list | None = None
+
+    def __enter__(self) -> RawTerminal:
+        self.saved = termios.tcgetattr(self.fd)
+        raw = termios.tcgetattr(self.fd)
+        raw[3] &= ~(termios.ICANON | termios.ECHO)
+        raw[6][termios.VMIN] = 0
+        raw[6][termios.VTIME] = 1
+        termios.tcsetattr(self.fd, termios.TCSANOW, raw)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self.saved is not None:
+            termios.tcsetattr(self.fd, termios.TCSANOW, self.saved)
+
+
+class TeleopTurtle(Node):
+    def __init__(self) -> None:
+        super().__init__('teleop_turtle')
+        self.declare_parameter('scale_linear', 2.0)
+        self.declare_parameter('scale_angular', 2.0)
+        self.twist_pub = self.create_publisher(Twist, 'turtle1/cmd_vel', TOPIC_QOS)
+        self.rotate_client = ActionClient(self, RotateAbsolute, 'turtle1/rotate_absolute')
+        self.goal_handle = None
+
+    def apply(self, command: Command) -> None:
+        if command.kind == 'move':
+            twist = Twist()
+            twist.linear.x = command.linear * self.get_parameter('scale_linear').value
+            twist.angular.z = command.angular * self.get_parameter('scale_angular').value
+            self.twist_pub.publish(twist)
+        elif command.kind == 'rotate':
+            future = self.rotate_client.send_goal_async(RotateAbsolute.Goal(theta=command.theta))
+            future.add_done_callback(self._remember_goal)
+        elif command.kind == 'cancel' and self.goal_handle is not None:
+            try:
+                self.goal_handle.cancel_goal_async()
+            except Exception:  # noqa: BLE001 - upstream ignores cancel errors
+                pass
+
+    def _remember_goal(self, future) -> None:
+        try:
+            self.goal_handle = future.result()
+        except Exception:  # noqa: BLE001
+            pass
+
+
+_quit = threading.Event()
+
+
+def _on_sigint(signum, frame) -> None:
+    _quit.set()
+
+
+def key_loop(node: TeleopTurtle, fd: int) -> int:
+    print(INSTRUCTIONS, flush=True)
+    with RawTerminal(fd):
+        while not _quit.is_set():
+            try:
+                data = os.read(fd, 1)
+            except InterruptedError:
+                continue
+            except OSError as error:
+                print(f'read(): {os.strerror(error.errno)}', file=sys.stderr)
+                return 255
+            if not data:
+                continue
+            command = decode_key(data[0])
+            if command is None:
+                continue
+            if command.kind == 'quit':
+                break
+            node.apply(command)
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    rclpy.init(args=sys.argv if argv is None else argv,
+               signal_handler_options=SignalHandlerOptions.NO)
+    signal.signal(signal.SIGINT, _on_sigint)
+    signal.signal(signal.SIGTERM, _on_sigint)
+    node = TeleopTurtle()
+    executor = SingleThreadedExecutor()
+    executor.add_node(node)
+    spinner = threading.Thread(target=_spin, args=(executor,), daemon=True)
+    spinner.start()
+    try:
+        status = key_loop(node, sys.stdin.fileno())
+    except termios.error as error:
+        print(f'turtle_teleop_key needs a terminal on stdin: {error}', file=sys.stderr)
+        status = 1
+    finally:
+        # Stop the spinning thread before anything is destroyed under it.
+        rclpy.try_shutdown()
+        spinner.join(timeout=5.0)
+        executor.shutdown(timeout_sec=1.0)
+        node.destroy_node()
+    return status
+
+
+def _spin(executor: SingleThreadedExecutor) -> None:
+    try:
+        executor.spin()
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass

@@ -1,0 +1,132 @@
+"""turtlesim_node: the simulator, in a window when a display exists, headless otherwise."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+import sys
+import threading
+
+import rclpy
+from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from rclpy.signals import SignalHandlerOptions
+from rclpy.utilities import remove_ros_args
+
+
+def parse_args(argv: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(prog='turtlesim_node', description=__doc__)
+    parser.add_argument('--headless', action='store_true',
+                        help='never open a window (default when no display is available)')
+    parser.add_argument('--fixed-step', action='store_true',
+                        help='advance exactly 0.016 s per tick and publish /clock')
+    parser.add_argument('--canvas-png', default='turtlesim_canvas.png', metavar='PATH',
+                        help='where /turtlesim/_save_canvas and shutdown write the canvas PNG')
+    parser.add_argument('--service-introspection', choices=('off', 'metadata', 'contents'),
+                        default='off', help='service introspection on every served service')
+    parser.add_argument('--tick-stats', metavar='PATH',
+                        help='at shutdown, write tick cost statistics (JSON) to PATH')
+    return parser.parse_args(argv)
+
+
+def display_available() -> bool:
+    if not (os.environ.get('DISPLAY') or os.environ.get('WAYLAND_DISPLAY')):
+        return False
+    return os.environ.get('QT_QPA_PLATFORM', '') not in ('offscreen', 'minimal')
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv if argv is None else argv
+    args = parse_args(remove_ros_args(argv)[1:])
+    global _window_mode
+    windowed = not args.headless and display_available()
+    _window_mode = windowed
+    if not windowed:
+        os.environ['QT_QPA_PLATFORM'] = 'offscreen'
+    if windowed:
+        from PySide6.QtWidgets import QApplication
+        app = QApplication([argv[0]])
+    else:
+        from PySide6.QtGui import QGuiApplication
+        app = QGuiApplication([argv[0]])
+
+    from turtlesim_py.frame import TurtleFrame
+
+    # Our own handlers: Ctrl-C and SIGTERM raise KeyboardInterrupt in the spinning thread, so
+    # the canvas is saved and logged while the context is still valid, and we exit with 0.
+    rclpy.init(args=argv, signal_handler_options=SignalHandlerOptions.NO)
+    signal.signal(signal.SIGINT, _interrupt)
+    signal.signal(signal.SIGTERM, _interrupt)
+    node = TurtleFrame(canvas_png=args.canvas_png, fixed_step=args.fixed_step,
+                       introspection=args.service_introspection)
+    executor = SingleThreadedExecutor()
+    executor.add_node(node)
+    try:
+        if windowed:
+            _run_window(app, node, executor)
+        else:
+            executor.spin()
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        try:
+            path = node.save_canvas()
+            node.get_logger().info(f'Canvas written to {path}')
+        except OSError as error:
+            node.get_logger().error(f'Could not write the canvas: {error}')
+        if args.tick_stats:
+            node.write_tick_stats(args.tick_stats)
+        executor.shutdown(timeout_sec=1.0)
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0
+
+
+_stop_window = threading.Event()
+
+
+def _interrupt(signum, frame) -> None:
+    if _window_mode:
+        _stop_window.set()  # the Qt timer notices it; raising inside a Qt slot is not safe
+    else:
+        raise KeyboardInterrupt
+
+
+_window_mode = False
+
+
+def _run_window(app, node, executor) -> None:
+    """Qt owns the main thread; ROS spins on a worker thread; the canvas has its own lock."""
+    from PySide6.QtCore import QTimer
+
+    from turtlesim_py.window import CanvasWindow
+
+    window = CanvasWindow(node)
+    window.show()
+    spinner = threading.Thread(target=_spin_quietly, args=(executor,), daemon=True)
+    spinner.start()
+    timer = QTimer()
+
+    def refresh() -> None:
+        if _stop_window.is_set() or not spinner.is_alive():
+            app.quit()
+        elif node.dirty:
+            node.dirty = False
+            window.update()
+
+    timer.timeout.connect(refresh)
+    timer.start(16)
+    app.exec()
+    executor.shutdown(timeout_sec=1.0)
+    spinner.join(timeout=2)
+
+
+def _spin_quietly(executor) -> None:
+    try:
+        executor.spin()
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+
+
+if __name__ == '__main__':
+    sys.exit(main())
