@@ -96,6 +96,25 @@ def test_call_defaults_and_int_for_float(ros_env, node):
                '{x: 2, theta: 0.5}')
     assert 'turtlesim.msg.Pose(x=2.0, y=0.0, theta=0.5, linear_velocity=0.0, ' \
            'angular_velocity=0.0)' in pub.stdout
+    nan = ros2(ros_env, 'topic', 'pub', '--once', '-w', '0', '/nowhere', 'turtlesim/msg/Pose',
+               '{x: .nan, y: -.inf}')
+    assert 'turtlesim.msg.Pose(x=nan, y=-inf, theta=0.0' in nan.stdout, nan.stderr
+
+
+@pytest.mark.parametrize('type_name, values, message', [
+    ('geometry_msgs/msg/Twist', "{linear: {x: 'a'}}", "'linear.x' must be a number, got 'a'"),
+    ('geometry_msgs/msg/Twist', '{angular: 3}',
+     "'angular.' expects a mapping of field names to values, got 3"),
+    ('turtlesim/msg/Pose', '{x: 1.0e+39}',
+     "'x' must be a float32 in [-3.40282e+38, 3.40282e+38], got 1e+39"),
+    ('turtlesim/msg/Color', '{r: 1, yes: 2}',
+     "'yes' is not a field of turtlesim/msg/Color (fields: r, g, b)"),
+    ('std_msgs/msg/UInt32', '{data: -1}', "'data' must be an integer in [0, 4294967295], got -1"),
+])
+def test_pub_refuses_bad_values(ros_env, type_name, values, message):
+    result = ros2(ros_env, 'topic', 'pub', '--once', '/nowhere', type_name, values)
+    assert (result.stdout, result.stderr, result.returncode) == (
+        '', f'Failed to populate field: {message}\n', 1)
 
 
 @pytest.mark.parametrize('values, message', [
@@ -152,7 +171,7 @@ def test_call_waits_for_a_late_service(ros_env, launch):
                              '{data: false}'], env=ros_env, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     try:
-        time.sleep(2.5)
+        time.sleep(4.5)
         launch(argv=cli_test_node_argv())
         out, err = call.communicate(timeout=15)
     finally:

@@ -13,7 +13,8 @@ from test_controller_turtlesim import count_canvas
 
 from support import REPO, executable
 
-STARTED = re.compile(r'^\[demo\] started (turtlesim|turtle_controller) \(pid (\d+)\)$', re.MULTILINE)
+STARTED = re.compile(r'^\[demo\] started (turtlesim|turtle_controller) \(pid (\d+)\)$',
+                     re.MULTILINE)
 
 
 def demo_env(ros_env):

@@ -56,7 +56,8 @@ def test_controller_started_before_turtlesim_warns_then_works(launch, probe, tmp
         first = APPLIED.search(controller.output)
         assert tuple(map(int, first.groups()[1:])) == GREEN  # turtle1 starts at x = 5.54
         wait_until(lambda: any(p.linear_velocity == 5.0 for _, p in poses), 5, 'driving')
-        time.sleep(4.0)
+        # Driven from x = 5.54, the turtle reaches the left half after about 5 s.
+        wait_until(lambda: poses[-1][1].x < 4.0, 20, 'the turtle on the left side')
     print(f'pen applied {float(first.group(1)) - started:.2f} s after turtlesim was started')
     # The warnings stopped once the server was there.
     assert all(float(t) < float(first.group(1)) for t in WAITING.findall(controller.output))
@@ -73,6 +74,7 @@ def test_pen_is_applied_again_after_turtlesim_restart(launch, probe, tmp_path, k
     controller = launch(*CONTROLLER)
     with Background(probe):  # arrival times are stamped as messages arrive
         controller.wait_for_output(APPLIED.pattern, timeout=20)
+        wait_until(lambda: commands and poses, 20, 'the probe hearing both nodes')
         time.sleep(2.0)
         first.popen.send_signal(kill_signal)
         first.wait(timeout=10)

@@ -3,7 +3,8 @@
 Both nodes run as child processes; their output is forwarded line by line with a
 `[turtlesim]` / `[turtle_controller]` prefix. Ctrl-C, SIGTERM, `--seconds N` running out, or
 either node exiting stops both (Ctrl-C first, then SIGTERM, then SIGKILL), turtlesim last so
-that it writes the final canvas PNG. Every child is in its own process group and gets SIGTERM
+that it can write the final canvas PNG (which the launcher first asks it for over
+/turtlesim/_save_canvas). Every child is in its own process group and gets SIGTERM
 from the kernel should this launcher die, so no process is ever left behind.
 """
 
@@ -88,6 +89,37 @@ class Child:
         return code
 
 
+def save_canvas(domain_id: int, timeout: float = 5.0) -> str | None:
+    """Ask turtlesim to write its canvas PNG now; its path, or None if it did not answer.
+
+    Done before stopping anything, so the saved picture does not depend on how turtlesim
+    handles its shutdown (it also writes the PNG then, if it can).
+    """
+    import rclpy
+    from rclpy.context import Context
+    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.signals import SignalHandlerOptions
+    from std_srvs.srv import Trigger
+
+    context = Context()
+    rclpy.init(context=context, domain_id=domain_id,
+               signal_handler_options=SignalHandlerOptions.NO)
+    try:
+        node = rclpy.create_node('_turtle_demo', context=context)
+        client = node.create_client(Trigger, '/turtlesim/_save_canvas')
+        if not client.wait_for_service(timeout_sec=timeout):
+            return None
+        future = client.call_async(Trigger.Request())
+        executor = SingleThreadedExecutor(context=context)
+        executor.add_node(node)
+        executor.spin_until_future_complete(future, timeout_sec=timeout)
+        if not future.done() or not future.result().success:
+            return None
+        return future.result().message
+    finally:
+        rclpy.try_shutdown(context=context)
+
+
 def say(text: str) -> None:
     print(f'[demo] {text}', flush=True)
 
@@ -127,6 +159,7 @@ def main(argv: list[str] | None = None) -> int:
     # Keep DDS discovery on this machine (see the README's environment section).
     env['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
     env['PYTHONUNBUFFERED'] = '1'
+    os.environ.update(ROS_DOMAIN_ID=env['ROS_DOMAIN_ID'], ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
 
     canvas = options.canvas_png
     if canvas is None:
@@ -174,11 +207,14 @@ def main(argv: list[str] | None = None) -> int:
         signal.signal(signal.SIGINT, signal.SIG_IGN)
         signal.signal(signal.SIGTERM, signal.SIG_IGN)
         say(f'stopping ({reason})')
-        before = canvas.stat().st_mtime if canvas.exists() else None
+        saved = None
+        if children and children[0].running():
+            saved = save_canvas(int(env['ROS_DOMAIN_ID']))
+        before = canvas.stat().st_mtime_ns if canvas.exists() else None
         for child in reversed(children):  # controller first, turtlesim last
             code = child.stop()
             say(f'{child.label} exited with code {code}')
-    if canvas.exists() and canvas.stat().st_mtime != before:
+    if saved or (canvas.exists() and canvas.stat().st_mtime_ns != before):
         say(f'final canvas saved: {canvas}')
     else:
         say(f'warning: turtlesim did not write the final canvas to {canvas}')

@@ -79,9 +79,11 @@ class TurtleController(Node):
         self.current_side: Side | None = None     # side of the latest pose
         self.requested_side: Side | None = None   # side whose colour was last asked for
         self.server_ready = False
-        self.last_waiting_warn = float('-inf')
+        # The first warning only after a period: discovery normally takes a moment.
+        self.last_waiting_warn = time.monotonic()
         self.pose_publishers: set[bytes] = set()
-        self.pending: dict[Future, tuple[Side, float]] = {}  # call -> (side, time sent)
+        # call -> (side, colour, time sent)
+        self.pending: dict[Future, tuple[Side, tuple[int, int, int], float]] = {}
         self.create_timer(GRAPH_CHECK_PERIOD, self.on_graph_check)
         self.get_logger().info(
             f'driving turtle1: pen {colour_name(self.config.left_colour)} for '
@@ -176,13 +178,21 @@ class TurtleController(Node):
         # costs no extra check period (service_is_ready only reads the local graph cache).
         if not self.check_server():
             return
+        if self.requested_side is None:
+            # A re-apply covers every turtle1 publishing now: the graph check must not take
+            # the one whose pose brought us here for yet another new turtle.
+            self.pose_publishers = self.pose_publisher_ids()
         side = self.current_side
         r, g, b = colour_for(side, self.config)
         future = self.set_pen.call_async(
             SetPen.Request(r=r, g=g, b=b, width=self.config.pen_width, off=0))
         self.requested_side = side
-        self.pending[future] = (side, time.monotonic())
+        self.pending[future] = (side, (r, g, b), time.monotonic())
         future.add_done_callback(self.on_pen_reply)
+
+    def pose_publisher_ids(self) -> set[bytes]:
+        return {bytes(info.endpoint_gid)
+                for info in self.get_publishers_info_by_topic(POSE_TOPIC)}
 
     def check_server(self) -> bool:
         """Whether set_pen is served; when that changes, what was asked before no longer holds."""
@@ -192,21 +202,21 @@ class TurtleController(Node):
             self.requested_side = None
             if ready:
                 self.get_logger().info(f'{SET_PEN_SERVICE} is available')
+            else:
+                self.current_side = None  # a turtle that comes back may be a new one elsewhere
         return ready
 
     def on_pen_reply(self, future: Future) -> None:
-        side, _ = self.pending.pop(future, (None, 0.0))
-        if side is None or future.cancelled():
+        if future not in self.pending or future.cancelled():
             return  # given up on in on_graph_check
+        side, colour, _ = self.pending.pop(future)
         error = future.exception()
         if error is not None:
             self.get_logger().error(f'set_pen for the {side.value} side failed: {error}')
             if self.requested_side is side:
                 self.requested_side = None  # try again at the next pose
             return
-        self.get_logger().info(
-            f'pen colour applied: {colour_name(colour_for(side, self.config))}'
-            f' ({side.value} side, width {self.config.pen_width})')
+        self.get_logger().info(f'pen colour applied: {colour_name(colour)} ({side.value} side)')
 
     def on_graph_check(self) -> None:
         """Track the set_pen server and the turtle's identity; re-apply the pen when lost.
@@ -226,15 +236,15 @@ class TurtleController(Node):
                 self.get_logger().warning(
                     f'{SET_PEN_SERVICE} not available, waiting (still driving)...')
 
-        publishers = {bytes(info.endpoint_gid)
-                      for info in self.get_publishers_info_by_topic(POSE_TOPIC)}
+        publishers = self.pose_publisher_ids()
         if publishers - self.pose_publishers:
             if self.pose_publishers:
                 self.get_logger().info('a new turtle1 appeared: applying the pen again')
-            self.requested_side = None
+            # Its side is known from its first pose on: not the side of the old turtle.
+            self.requested_side = self.current_side = None
         self.pose_publishers = publishers
 
-        for future, (side, sent) in list(self.pending.items()):
+        for future, (side, _, sent) in list(self.pending.items()):
             if time.monotonic() - sent > PEN_REPLY_TIMEOUT:
                 del self.pending[future]
                 self.set_pen.remove_pending_request(future)

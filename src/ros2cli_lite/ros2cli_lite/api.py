@@ -39,8 +39,25 @@ def full_node_name(name: str, namespace: str) -> str:
 # --------------------------------------------------------------------------------------
 
 @contextmanager
-def cli_node(name: str | None = None) -> Iterator[Any]:
-    """A hidden node `_ros2cli_<pid>` in a fresh context, torn down on exit."""
+def cli_node(name: str | None = None, discover: bool = True) -> Iterator[Any]:
+    """A hidden node `_ros2cli_<pid>` in a fresh context, torn down on exit.
+
+    With `discover`, make sure the node has met the rest of the graph first (see _meet_graph).
+    """
+    import rclpy
+
+    node_name = name or f'{NODE_NAME_PREFIX}_{os.getpid()}'
+    context, node = _make_node(node_name)
+    try:
+        if discover:
+            context, node = _meet_graph(context, node, node_name)
+        yield node
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
+
+
+def _make_node(name: str) -> tuple[Any, Any]:
     import rclpy
     from rclpy.context import Context
     from rclpy.parameter import Parameter
@@ -49,14 +66,38 @@ def cli_node(name: str | None = None) -> Iterator[Any]:
     rclpy.init(args=[], context=context)
     # No parameter or type-description services: the CLI node offers nothing to the graph.
     node = rclpy.create_node(
-        name or f'{NODE_NAME_PREFIX}_{os.getpid()}', context=context,
-        start_parameter_services=False,
+        name, context=context, start_parameter_services=False,
         parameter_overrides=[Parameter('start_type_description_service', value=False)])
-    try:
-        yield node
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown(context=context)
+    return context, node
+
+
+def _meet_graph(context: Any, node: Any, name: str, patience: float = 0.4,
+                bound: float = 1.8) -> tuple[Any, Any]:
+    """Wait until another participant is known; replace ours when it is not met quickly.
+
+    With Fast DDS and localhost-only discovery, a new participant is sometimes not answered
+    by the others until their next periodic announcement (up to 3 s later). Normally it meets
+    them within ~0.1 s, so after `patience` seconds without anybody a fresh participant is
+    tried (the old one is shut down once the new one exists, so both get distinct ports).
+    Gives up after `bound` seconds: the graph may well be empty.
+    """
+    import rclpy
+
+    start = time.monotonic()
+    attempt_start = start
+    while True:
+        if len(node.get_node_names_and_namespaces()) > 1:
+            return context, node
+        now = time.monotonic()
+        if now - start >= bound:
+            return context, node
+        if now - attempt_start >= patience and bound - (now - start) > patience:
+            node.destroy_node()
+            new_context, new_node = _make_node(name)
+            rclpy.try_shutdown(context=context)
+            context, node = new_context, new_node
+            attempt_start = time.monotonic()
+        time.sleep(0.01)
 
 
 def spin_once(node: Any, timeout: float) -> None:
@@ -79,15 +120,18 @@ def graph_snapshot(node: Any) -> tuple:
 
 
 def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: float = 0.4,
-                   bound: float = 2.0) -> bool:
+                   bound: float | None = None) -> bool:
     """Let discovery run until the graph has stopped changing for `settle` seconds.
 
     Without a daemon a fresh node knows nothing: poll the graph (cheap, local caches) and return
     once it is stable and complete and, if given, `ready()` holds; never later than `bound`
     seconds. Complete means another node is known and every node's endpoints have arrived (a
     node's name and its endpoints are discovered separately, sometimes far apart under load).
-    Returns whether `ready()` held.
+    The default bound is 2 s for listings, 4 s while looking for something that may just
+    not be discovered yet (a loaded machine can take that long). Returns whether `ready()` held.
     """
+    if bound is None:
+        bound = 2.0 if ready is None else 4.0
     start = time.monotonic()
     own = node.get_fully_qualified_name()
     last = None
@@ -222,7 +266,7 @@ def load_values(text: str) -> Any:
 
 
 INTEGER_RANGES = {
-    'int8': (-(2**7), 2**7 - 1), 'uint8': (0, 2**8 - 1), 'byte': (0, 2**8 - 1),
+    'int8': (-(2**7), 2**7 - 1), 'uint8': (0, 2**8 - 1), 'octet': (0, 2**8 - 1),
     'int16': (-(2**15), 2**15 - 1), 'uint16': (0, 2**16 - 1),
     'int32': (-(2**31), 2**31 - 1), 'uint32': (0, 2**32 - 1),
     'int64': (-(2**63), 2**63 - 1), 'uint64': (0, 2**64 - 1),
@@ -296,13 +340,13 @@ def _convert(slot_type: Any, value: Any, current: Any, path: str) -> Any:
         low, high = INTEGER_RANGES[name]
         if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
             raise FieldError(f"'{path}' must be an integer in [{low}, {high}], got {_show(value)}")
-        return value if name != 'byte' else bytes([value])
+        return value if name != 'octet' else bytes([value])
     if name in FLOAT_TYPES:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise FieldError(f"'{path}' must be a number, got {_show(value)}")
         number = float(value)
-        if name == 'float32' and abs(number) > FLOAT32_MAX and number != float('inf') \
-                and number != float('-inf'):
+        if name in ('float', 'float32') and abs(number) > FLOAT32_MAX \
+                and abs(number) != float('inf'):
             raise FieldError(f"'{path}' must be a float32 in [-{FLOAT32_MAX:g}, "
                              f'{FLOAT32_MAX:g}], got {_show(value)}')
         return number

@@ -44,6 +44,10 @@ PARAMETER_EVENT_QOS = QoSProfile(depth=100, history=qos_profile_sensor_data.hist
                                  reliability=qos_profile_sensor_data.reliability,
                                  durability=qos_profile_sensor_data.durability)
 
+GLOBAL_SERVICE_QOS = QoSProfile(depth=1000, history=qos_profile_services_default.history,
+                                reliability=qos_profile_services_default.reliability,
+                                durability=qos_profile_services_default.durability)
+
 
 def turtle_name_problem(name: str) -> str | None:
     """Why `name` cannot name a turtle, or None when it can."""
@@ -86,10 +90,12 @@ class TurtleFrame(Node):
         self.create_subscription(ParameterEvent, '/parameter_events', self._on_parameter_event,
                                  PARAMETER_EVENT_QOS)
 
-        self.create_service(Empty, 'clear', self._on_clear)
-        self.create_service(Empty, 'reset', self._on_reset)
-        self.create_service(Spawn, 'spawn', self._on_spawn)
-        self.create_service(Kill, 'kill', self._on_kill)
+        # Deeper request queues than the default 10: a burst of 200 spawn calls sent at once
+        # would otherwise lose all but the last few requests inside DDS.
+        self.create_service(Empty, 'clear', self._on_clear, qos_profile=GLOBAL_SERVICE_QOS)
+        self.create_service(Empty, 'reset', self._on_reset, qos_profile=GLOBAL_SERVICE_QOS)
+        self.create_service(Spawn, 'spawn', self._on_spawn, qos_profile=GLOBAL_SERVICE_QOS)
+        self.create_service(Kill, 'kill', self._on_kill, qos_profile=GLOBAL_SERVICE_QOS)
         self.create_service(Trigger, '~/_save_canvas', self._on_save_canvas)
         self.clock_pub = None
         if fixed_step:

@@ -59,7 +59,7 @@ def main(argv: list[str] | None = None) -> int:
     signal.signal(signal.SIGTERM, _interrupt)
     node = TurtleFrame(canvas_png=args.canvas_png, fixed_step=args.fixed_step,
                        introspection=args.service_introspection)
-    executor = SingleThreadedExecutor()
+    executor = make_executor()
     executor.add_node(node)
     try:
         if windowed:
@@ -83,6 +83,13 @@ def main(argv: list[str] | None = None) -> int:
 
 
 _stop_window = threading.Event()
+
+
+def make_executor():
+    if os.environ.get('TURTLESIM_EXECUTOR', 'events') == 'events':
+        from rclpy.experimental.events_executor import EventsExecutor
+        return EventsExecutor()
+    return SingleThreadedExecutor()
 
 
 def _interrupt(signum, frame) -> None:

@@ -62,7 +62,7 @@ def _find_node(node, args: argparse.Namespace) -> str | None:
     from ros2cli_lite.api import wait_for_graph
     target = absolute(args.node_name)
     wait_for_graph(node, ready=lambda: target in _nodes(node, args.include_hidden_nodes),
-                   settle=0.1, bound=max(2.0, float(getattr(args, 'timeout', 0) or 0)))
+                   settle=0.1, bound=max(4.0, float(getattr(args, 'timeout', 0) or 0)))
     return target if target in _nodes(node, args.include_hidden_nodes) else None
 
 

@@ -145,9 +145,10 @@ def call_verb(args: argparse.Namespace) -> int | str:
     # Everything is checked before a node exists: a refused request is never sent.
     request = populate(srv_type.Request(), values)
 
+    started = time.monotonic()
     with cli_node() as node:
         client = node.create_client(srv_type, args.service_name)
-        if not _wait_for_service(node, client, args.service_name, args.timeout):
+        if not _wait_for_service(client, started, args.timeout):
             return (f"Service '{args.service_name}' did not become available within "
                     f'{args.timeout:g} s (is its node running? see `ros2 service list`)')
         while True:
@@ -167,14 +168,15 @@ def call_verb(args: argparse.Namespace) -> int | str:
     return 0
 
 
-def _wait_for_service(node, client, name: str, timeout: float) -> bool:
-    """Quietly give discovery a moment, then say that we wait, as ros2cli does."""
-    grace = 2.0 if timeout <= 0 else min(2.0, timeout)
-    if client.wait_for_service(timeout_sec=grace):
+def _wait_for_service(client, started: float, timeout: float) -> bool:
+    """Quietly give discovery three seconds, then say that we wait (as ros2cli does), bounded."""
+    forever = timeout <= 0
+    grace = started + (3.0 if forever else min(3.0, timeout))
+    if client.wait_for_service(timeout_sec=max(0.0, grace - time.monotonic())):
         return True
     print('waiting for service to become available...', flush=True)
-    if timeout <= 0:
+    if forever:
         while not client.wait_for_service(timeout_sec=1.0):
             pass
         return True
-    return client.wait_for_service(timeout_sec=max(0.0, timeout - grace))
+    return client.wait_for_service(timeout_sec=max(0.0, started + timeout - time.monotonic()))

@@ -1,0 +1,194 @@
+"""`ros2 node`, `ros2 topic` and `ros2 param` against a real node (tests/cli_test_node.py)."""
+
+import re
+import signal
+import subprocess
+import time
+
+import pytest
+
+from support import cli_test_node_argv, ros2
+
+PARAM_SERVICES = [
+    ('/cli_test_node/describe_parameters', 'rcl_interfaces/srv/DescribeParameters'),
+    ('/cli_test_node/get_parameter_types', 'rcl_interfaces/srv/GetParameterTypes'),
+    ('/cli_test_node/get_parameters', 'rcl_interfaces/srv/GetParameters'),
+    ('/cli_test_node/get_type_description',
+     'type_description_interfaces/srv/GetTypeDescription'),
+    ('/cli_test_node/list_parameters', 'rcl_interfaces/srv/ListParameters'),
+    ('/cli_test_node/set_parameters', 'rcl_interfaces/srv/SetParameters'),
+    ('/cli_test_node/set_parameters_atomically', 'rcl_interfaces/srv/SetParametersAtomically'),
+]
+PARAMETERS = ['enabled', 'label', 'ratio', 'speed', 'start_type_description_service',
+              'use_sim_time']
+
+
+@pytest.fixture
+def node(launch):
+    process = launch(argv=cli_test_node_argv())
+    process.wait_for_output('^READY$')
+    return process
+
+
+def lines(*items):
+    return ''.join(f'{item}\n' for item in items)
+
+
+def check(result, stdout, stderr='', code=0):
+    assert (result.stdout, result.stderr, result.returncode) == (stdout, stderr, code)
+
+
+# --- ros2 node -----------------------------------------------------------------------------
+
+def test_node_list_and_info(ros_env, node):
+    check(ros2(ros_env, 'node', 'list'), '/cli_test_node\n')
+    check(ros2(ros_env, 'node', 'list', '-c'), '1\n')
+    everything = ros2(ros_env, 'node', 'list', '-a').stdout.splitlines()
+    assert everything[0] == '/_ros2cli_' + everything[0].rsplit('_', 1)[1]
+    assert everything[1:] == ['/cli_test_node']
+    services = [f'    {name}: {kind}' for name, kind in PARAM_SERVICES]
+    check(ros2(ros_env, 'node', 'info', '/cli_test_node'), lines(
+        '/cli_test_node',
+        '  Subscribers:', '    /heard: std_msgs/msg/String',
+        '  Publishers:', '    /parameter_events: rcl_interfaces/msg/ParameterEvent',
+        '    /pose: turtlesim/msg/Pose', '    /rosout: rcl_interfaces/msg/Log',
+        '  Service Servers:', *services, '    /flag: std_srvs/srv/SetBool',
+        '    /pen: turtlesim/srv/SetPen',
+        '  Service Clients:', '', '  Action Servers:', '', '  Action Clients:', ''))
+    hidden = ros2(ros_env, 'node', 'info', '--include-hidden', '/cli_test_node')
+    assert '    /_hidden_flag: std_srvs/srv/SetBool\n' in hidden.stdout
+    check(ros2(ros_env, 'node', 'info', 'cli_test_node'), '',
+          "Unable to find node 'cli_test_node'\n", 1)
+
+
+# --- ros2 topic ----------------------------------------------------------------------------
+
+def test_topic_list_type_info(ros_env, node):
+    topics = [('/heard', 'std_msgs/msg/String'),
+              ('/parameter_events', 'rcl_interfaces/msg/ParameterEvent'),
+              ('/pose', 'turtlesim/msg/Pose'), ('/rosout', 'rcl_interfaces/msg/Log')]
+    check(ros2(ros_env, 'topic', 'list'), lines(*(name for name, _ in topics)))
+    check(ros2(ros_env, 'topic', 'list', '-t'), lines(*(f'{n} [{t}]' for n, t in topics)))
+    check(ros2(ros_env, 'topic', 'list', '-c'), '4\n')
+    # The CLI's own node publishes /parameter_events and /rosout too, as ros2cli's does.
+    check(ros2(ros_env, 'topic', 'list', '-v'), lines(
+        'Published topics:',
+        ' * /parameter_events [rcl_interfaces/msg/ParameterEvent] 2 publishers',
+        ' * /pose [turtlesim/msg/Pose] 1 publisher',
+        ' * /rosout [rcl_interfaces/msg/Log] 2 publishers', '',
+        'Subscribed topics:', ' * /heard [std_msgs/msg/String] 1 subscriber', ''))
+    check(ros2(ros_env, 'topic', 'type', '/pose'), 'turtlesim/msg/Pose\n')
+    check(ros2(ros_env, 'topic', 'type', '/nope'), '', '', 1)
+    check(ros2(ros_env, 'topic', 'info', '/pose'),
+          'Type: turtlesim/msg/Pose\nPublisher count: 1\nSubscription count: 0\n')
+    check(ros2(ros_env, 'topic', 'info', '/nope'), '', "Unknown topic '/nope'\n", 1)
+
+
+def test_topic_info_verbose(ros_env, node):
+    result = ros2(ros_env, 'topic', 'info', '-v', '/pose')
+    gid = r'(?:[0-9a-f]{2}\.){15}[0-9a-f]{2}'
+    expected = (
+        r'Type: turtlesim/msg/Pose\n\nPublisher count: 1\n\n'
+        r'Node name: cli_test_node\nNode namespace: /\nTopic type: turtlesim/msg/Pose\n'
+        r'Topic type hash: RIHS01_[0-9a-f]{64}\nEndpoint type: PUBLISHER\n'
+        rf'GID: {gid}\nQoS profile:\n  Reliability: RELIABLE\n  History \(Depth\): UNKNOWN\n'
+        r'  Durability: VOLATILE\n  Lifespan: Infinite\n  Deadline: Infinite\n'
+        r'  Liveliness: AUTOMATIC\n  Liveliness lease duration: Infinite\n\n'
+        r'Subscription count: 0\n\n')
+    assert re.fullmatch(expected, result.stdout), result.stdout
+
+
+def test_topic_echo(ros_env, node):
+    pose = 'x: 1.5\ny: 2.25\ntheta: -0.5\nlinear_velocity: 0.0\nangular_velocity: 0.0\n---\n'
+    check(ros2(ros_env, 'topic', 'echo', '--once', '/pose'), pose)
+    check(ros2(ros_env, 'topic', 'echo', '--once', '/pose', 'turtlesim/msg/Pose'), pose)
+    check(ros2(ros_env, 'topic', 'echo', '--once', '--field', 'theta', '/pose'), '-0.5\n---\n')
+    check(ros2(ros_env, 'topic', 'echo', '--once', '/nope'),
+          '', 'WARNING: topic [/nope] does not appear to be published yet\n'
+          'Could not determine the type for the passed topic\n', 1)
+
+
+def test_topic_echo_streams_until_interrupted(ros_env, node):
+    echo = subprocess.Popen(['ros2', 'topic', 'echo', '/pose'], env=ros_env, text=True,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        time.sleep(3)
+        echo.send_signal(signal.SIGINT)
+        out, err = echo.communicate(timeout=10)
+    finally:
+        echo.kill()
+    assert 'Traceback' not in err
+    assert out.count('---\n') >= 5
+    assert out.startswith('x: 1.5\n')
+
+
+def test_topic_pub_once_reaches_the_subscriber(ros_env, node):
+    result = ros2(ros_env, 'topic', 'pub', '--once', '/heard', 'std_msgs/msg/String',
+                  '{data: hi there}')
+    assert result.returncode == 0, result.stderr
+    out = re.sub(r'^Waiting for at least 1 matching subscription\(s\)\.\.\.\n', '',
+                 result.stdout, flags=re.MULTILINE)
+    assert out == ('publisher: beginning loop\n'
+                   "publishing #1: std_msgs.msg.String(data='hi there')\n\n")
+    node.wait_for_output('^HEARD hi there$')
+
+
+def test_topic_pub_times_and_bad_values(ros_env, node):
+    result = ros2(ros_env, 'topic', 'pub', '-r', '20', '-t', '3', '/heard',
+                  'std_msgs/msg/String', 'data: x')
+    assert result.stdout.count('publishing #') == 3
+    assert 'publishing #3: ' in result.stdout
+    bad = ros2(ros_env, 'topic', 'pub', '--once', '/heard', 'std_msgs/msg/String', '{data: 5}')
+    check(bad, '', "Failed to populate field: 'data' must be a string, got 5 "
+          "(quote it, e.g. '\"123\"')\n", 1)
+    check(ros2(ros_env, 'topic', 'pub', '/heard', 'std_msgs/msg/String', '5'), '',
+          'The passed value needs to be a dictionary in YAML format\n', 1)
+    assert 'HEARD 5' not in node.output
+
+
+def test_topic_hz(ros_env, node):
+    hz = subprocess.Popen(['ros2', 'topic', 'hz', '/pose'], env=ros_env, text=True,
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        time.sleep(4)
+        hz.send_signal(signal.SIGINT)
+        out, err = hz.communicate(timeout=10)
+    finally:
+        hz.kill()
+    blocks = re.findall(r'average rate: (\d+\.\d{3})\n\tmin: \d+\.\d{3}s max: \d+\.\d{3}s '
+                        r'std dev: \d+\.\d{5}s window: (\d+)\n', out)
+    assert blocks and len(blocks) * 2 == len(out.splitlines()), out
+    assert 12 < float(blocks[-1][0]) < 25  # published at 20 Hz
+    assert 'Traceback' not in err
+
+
+# --- ros2 param ----------------------------------------------------------------------------
+
+def test_param_list_get(ros_env, node):
+    check(ros2(ros_env, 'param', 'list', '/cli_test_node'),
+          lines(*(f'  {p}' for p in PARAMETERS)))
+    check(ros2(ros_env, 'param', 'list'),
+          lines('/cli_test_node:', *(f'  {p}' for p in PARAMETERS)))
+    check(ros2(ros_env, 'param', 'get', '/cli_test_node', 'speed'), 'Integer value is: 69\n')
+    check(ros2(ros_env, 'param', 'get', 'cli_test_node', 'ratio'), 'Double value is: 0.5\n')
+    check(ros2(ros_env, 'param', 'get', '/cli_test_node', 'label'), 'String value is: hello\n')
+    check(ros2(ros_env, 'param', 'get', '/cli_test_node', 'enabled'),
+          'Boolean value is: True\n')
+    check(ros2(ros_env, 'param', 'get', '/cli_test_node', 'nope'), '', 'Parameter not set\n', 1)
+    check(ros2(ros_env, 'param', 'get', '/nobody', 'speed'), '', 'Node not found\n', 1)
+
+
+def test_param_set_and_describe(ros_env, node):
+    check(ros2(ros_env, 'param', 'set', '/cli_test_node', 'speed', '150'),
+          'Set parameter successful\n')
+    check(ros2(ros_env, 'param', 'get', '/cli_test_node', 'speed'), 'Integer value is: 150\n')
+    refused = ros2(ros_env, 'param', 'set', '/cli_test_node', 'speed', '300')
+    assert refused.stdout == ''
+    assert refused.stderr.startswith('Setting parameter failed: ')
+    wrong = ros2(ros_env, 'param', 'set', '/cli_test_node', 'speed', 'fast')
+    assert wrong.stderr.startswith('Setting parameter failed: ')
+    check(ros2(ros_env, 'param', 'get', '/cli_test_node', 'speed'), 'Integer value is: 150\n')
+    check(ros2(ros_env, 'param', 'describe', '/cli_test_node', 'speed', 'ratio'), lines(
+        'Parameter name: speed', '  Type: integer', '  Description: Speed of the test',
+        '  Constraints:', '    Min value: 0', '    Max value: 255', '    Step: 1',
+        'Parameter name: ratio', '  Type: double'))
