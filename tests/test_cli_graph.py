@@ -57,7 +57,7 @@ def test_node_list_and_info(ros_env, node):
         '  Service Clients:', '', '  Action Servers:', '', '  Action Clients:', ''))
     hidden = ros2(ros_env, 'node', 'info', '--include-hidden', '/cli_test_node')
     assert '    /_hidden_flag: std_srvs/srv/SetBool\n' in hidden.stdout
-    check(ros2(ros_env, 'node', 'info', 'cli_test_node'), '',
+    check(ros2(ros_env, 'node', 'info', '--spin-time', '1', 'cli_test_node'), '',
           "Unable to find node 'cli_test_node'\n", 1)
 
 
@@ -78,10 +78,11 @@ def test_topic_list_type_info(ros_env, node):
         ' * /rosout [rcl_interfaces/msg/Log] 2 publishers', '',
         'Subscribed topics:', ' * /heard [std_msgs/msg/String] 1 subscriber', ''))
     check(ros2(ros_env, 'topic', 'type', '/pose'), 'turtlesim/msg/Pose\n')
-    check(ros2(ros_env, 'topic', 'type', '/nope'), '', '', 1)
+    check(ros2(ros_env, 'topic', 'type', '--spin-time', '1', '/nope'), '', '', 1)
     check(ros2(ros_env, 'topic', 'info', '/pose'),
           'Type: turtlesim/msg/Pose\nPublisher count: 1\nSubscription count: 0\n')
-    check(ros2(ros_env, 'topic', 'info', '/nope'), '', "Unknown topic '/nope'\n", 1)
+    check(ros2(ros_env, 'topic', 'info', '--spin-time', '1', '/nope'), '',
+          "Unknown topic '/nope'\n", 1)
 
 
 def test_topic_info_verbose(ros_env, node):
@@ -103,7 +104,7 @@ def test_topic_echo(ros_env, node):
     check(ros2(ros_env, 'topic', 'echo', '--once', '/pose'), pose)
     check(ros2(ros_env, 'topic', 'echo', '--once', '/pose', 'turtlesim/msg/Pose'), pose)
     check(ros2(ros_env, 'topic', 'echo', '--once', '--field', 'theta', '/pose'), '-0.5\n---\n')
-    check(ros2(ros_env, 'topic', 'echo', '--once', '/nope'),
+    check(ros2(ros_env, 'topic', 'echo', '--spin-time', '1', '--once', '/nope'),
           '', 'WARNING: topic [/nope] does not appear to be published yet\n'
           'Could not determine the type for the passed topic\n', 1)
 
@@ -175,7 +176,8 @@ def test_param_list_get(ros_env, node):
     check(ros2(ros_env, 'param', 'get', '/cli_test_node', 'enabled'),
           'Boolean value is: True\n')
     check(ros2(ros_env, 'param', 'get', '/cli_test_node', 'nope'), '', 'Parameter not set\n', 1)
-    check(ros2(ros_env, 'param', 'get', '/nobody', 'speed'), '', 'Node not found\n', 1)
+    check(ros2(ros_env, 'param', 'get', '--spin-time', '1', '/nobody', 'speed'), '',
+          'Node not found\n', 1)
 
 
 def test_param_set_and_describe(ros_env, node):

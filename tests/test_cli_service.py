@@ -53,9 +53,9 @@ def test_list_variants(ros_env, node):
 def test_type_find_info(ros_env, node):
     result = ros2(ros_env, 'service', 'type', '/pen')
     assert (result.stdout, result.returncode) == ('turtlesim/srv/SetPen\n', 0)
-    unknown = ros2(ros_env, 'service', 'type', '/nope')
+    unknown = ros2(ros_env, 'service', 'type', '--spin-time', '1', '/nope')
     assert (unknown.stdout, unknown.stderr, unknown.returncode) == ('', '', 1)
-    hidden = ros2(ros_env, 'service', 'type', '/_hidden_flag')
+    hidden = ros2(ros_env, 'service', 'type', '--spin-time', '1', '/_hidden_flag')
     assert hidden.returncode == 1
     shown = ros2(ros_env, 'service', '--include-hidden-services', 'type', '/_hidden_flag')
     assert shown.stdout == 'std_srvs/srv/SetBool\n'
@@ -63,7 +63,7 @@ def test_type_find_info(ros_env, node):
     assert found.stdout == '/cli_test_node/get_parameters\n'
     info = ros2(ros_env, 'service', 'info', '/flag')
     assert info.stdout == 'Type: std_srvs/srv/SetBool\nClients count: 0\nServices count: 1\n'
-    missing = ros2(ros_env, 'service', 'info', '/nope')
+    missing = ros2(ros_env, 'service', 'info', '--spin-time', '1', '/nope')
     assert (missing.stderr, missing.returncode) == ("Unknown service '/nope'\n", 1)
 
 

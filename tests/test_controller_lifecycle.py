@@ -55,7 +55,7 @@ def test_controller_started_before_turtlesim_warns_then_works(launch, probe, tmp
         wait_until(lambda: APPLIED.search(controller.output), 15, 'the first pen colour')
         first = APPLIED.search(controller.output)
         assert tuple(map(int, first.groups()[1:])) == GREEN  # turtle1 starts at x = 5.54
-        wait_until(lambda: any(p.linear_velocity == 5.0 for _, p in poses), 5, 'driving')
+        wait_until(lambda: any(p.linear_velocity == 5.0 for _, p in poses), 15, 'driving')
         # Driven from x = 5.54, the turtle reaches the left half after about 5 s.
         wait_until(lambda: poses[-1][1].x < 4.0, 20, 'the turtle on the left side')
     print(f'pen applied {float(first.group(1)) - started:.2f} s after turtlesim was started')

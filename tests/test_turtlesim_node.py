@@ -18,6 +18,9 @@ from rcl_interfaces.srv import DescribeParameters, GetParameters, SetParameters
 from rclpy.action import ActionClient
 from service_msgs.msg import ServiceEventInfo
 from std_srvs.srv import Empty, Trigger
+from turtlesim.action import RotateAbsolute
+from turtlesim.msg import Color, Pose
+from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
 
 from support import (
     RosProcess,
@@ -27,9 +30,6 @@ from support import (
     ros_environment,
     turtle_qos,
 )
-from turtlesim.action import RotateAbsolute
-from turtlesim.msg import Color, Pose
-from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
 
 W = 11.088889122009277
 CENTER = 5.544444561004639

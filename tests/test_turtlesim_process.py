@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import os
 import signal
 import time
@@ -10,9 +11,9 @@ import pytest
 from geometry_msgs.msg import Twist
 from PySide6.QtGui import QImage
 from rosgraph_msgs.msg import Clock
+from turtlesim.msg import Pose
 
 from support import turtle_qos
-from turtlesim.msg import Pose
 
 CENTER = 5.544444561004639
 
@@ -80,7 +81,7 @@ def test_fixed_step_publishes_clock_and_moves_exactly(launch, probe, tmp_path):
     poses = probe.collect(Pose, '/turtle1/pose', turtle_qos())
     probe.spin_until(lambda: len(clocks) > 20 and poses, 10, '/clock and poses')
     stamps = [c.clock.sec * 10**9 + c.clock.nanosec for c in clocks]
-    assert {b - a for a, b in zip(stamps, stamps[1:], strict=False)} == {16_000_000}
+    assert {b - a for a, b in itertools.pairwise(stamps)} == {16_000_000}
     publisher = probe.node.create_publisher(Twist, '/turtle1/cmd_vel', turtle_qos())
     probe.spin_until(lambda: publisher.get_subscription_count() > 0, 10, 'cmd_vel subscriber')
     twist = Twist()

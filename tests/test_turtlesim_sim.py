@@ -3,7 +3,6 @@
 import math
 
 import pytest
-
 from turtlesim_py import sim
 
 H = sim.CANVAS_HEIGHT
@@ -121,3 +120,31 @@ def test_pose_linear_velocity_is_a_magnitude():
 ])
 def test_finite_float32(value, ok):
     assert sim.finite_float32(value) is ok
+
+
+def test_window_shows_the_composited_canvas():
+    import os
+
+    os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')
+    from PySide6.QtWidgets import QApplication
+
+    from turtlesim_py.canvas import Canvas
+    from turtlesim_py.window import CanvasWindow
+
+    app = QApplication.instance() or QApplication([])
+    canvas = Canvas()
+    canvas.draw_line(1.0, 1.0, 5.0, 1.0, (255, 0, 0), 3)
+    canvas.end_drawing()
+
+    class Frame:
+        def composite(self):
+            return canvas.composite((10, 20, 30), [(8.0, 8.0, 0.0, (0, 128, 0))])
+
+    window = CanvasWindow(Frame())
+    assert window.windowTitle() == 'TurtleSim'
+    assert (window.width(), window.height()) == (500, 500)
+    image = window.grab().toImage()
+    app.processEvents()
+    assert image.pixelColor(135, 45).getRgb()[:3] == (255, 0, 0)
+    assert image.pixelColor(400, 100).getRgb()[:3] == (10, 20, 30)
+    assert image.pixelColor(360, 360).getRgb()[:3] != (10, 20, 30)  # the sprite

@@ -12,11 +12,11 @@ import time
 
 import pytest
 from geometry_msgs.msg import Twist
-
-from support import executable, turtle_qos
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
 from turtlesim_py.teleop import INSTRUCTIONS, Command, decode_key
+
+from support import executable, turtle_qos
 
 
 @pytest.mark.parametrize('key, command', [

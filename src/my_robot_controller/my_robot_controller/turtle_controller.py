@@ -34,6 +34,7 @@ from my_robot_controller.turtle_logic import (
     DEFAULTS,
     PARAMETERS,
     ControllerConfig,
+    Rgb,
     Side,
     check_parameters,
     colour_for,
@@ -72,18 +73,17 @@ class TurtleController(Node):
         self.add_on_set_parameters_callback(self.on_parameters_proposed)
         self.add_post_set_parameters_callback(self.on_parameters_changed)
 
-        self.cmd_vel = self.create_publisher(Twist, '/turtle1/cmd_vel', TURTLE_QOS)
-        self.create_subscription(Pose, POSE_TOPIC, self.on_pose, TURTLE_QOS)
-        self.set_pen = self.create_client(SetPen, SET_PEN_SERVICE)
-
         self.current_side: Side | None = None     # side of the latest pose
         self.requested_side: Side | None = None   # side whose colour was last asked for
         self.server_ready = False
         # The first warning only after a period: discovery normally takes a moment.
         self.last_waiting_warn = time.monotonic()
-        self.pose_publishers: set[bytes] = set()
-        # call -> (side, colour, time sent)
-        self.pending: dict[Future, tuple[Side, tuple[int, int, int], float]] = {}
+        self.pose_publishers: set[bytes] = set()  # GIDs of the /turtle1/pose publishers
+        self.pending: dict[Future, tuple[Side, Rgb, float]] = {}  # -> side, colour, time sent
+
+        self.cmd_vel = self.create_publisher(Twist, '/turtle1/cmd_vel', TURTLE_QOS)
+        self.create_subscription(Pose, POSE_TOPIC, self.on_pose, TURTLE_QOS)
+        self.set_pen = self.create_client(SetPen, SET_PEN_SERVICE)
         self.create_timer(GRAPH_CHECK_PERIOD, self.on_graph_check)
         self.get_logger().info(
             f'driving turtle1: pen {colour_name(self.config.left_colour)} for '
@@ -103,10 +103,7 @@ class TurtleController(Node):
             value = self.declare_parameter(
                 name, default, ParameterDescriptor(dynamic_typing=True)).value
             given[name] = value
-        try:
-            config = with_changes(DEFAULTS, given)
-        except TypeError as error:
-            raise ParameterError(str(error)) from None
+        config = with_changes(DEFAULTS, given)
         problems = check_parameters(config)
         if problems:
             raise ParameterError('; '.join(problems))

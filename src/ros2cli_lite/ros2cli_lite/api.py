@@ -15,6 +15,8 @@ from contextlib import contextmanager
 from typing import Any
 
 NODE_NAME_PREFIX = '_ros2cli'
+# `--spin-time S` (ros2cli's discovery time without a daemon) overrides the discovery bound.
+SPIN_TIME: float | None = None
 
 
 class CliError(Exception):
@@ -83,6 +85,8 @@ def _meet_graph(context: Any, node: Any, name: str, patience: float = 0.4,
     """
     import rclpy
 
+    if SPIN_TIME is not None:
+        bound = min(bound, SPIN_TIME)
     start = time.monotonic()
     attempt_start = start
     while True:
@@ -131,7 +135,7 @@ def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: f
     not be discovered yet (a loaded machine can take that long). Returns whether `ready()` held.
     """
     if bound is None:
-        bound = 2.0 if ready is None else 4.0
+        bound = SPIN_TIME if SPIN_TIME is not None else 2.0 if ready is None else 4.0
     start = time.monotonic()
     own = node.get_fully_qualified_name()
     last = None

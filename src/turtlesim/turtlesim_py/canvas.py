@@ -20,8 +20,8 @@ SHELL_COLOURS = [
 class Canvas:
     """Owns the path image. All access goes through `lock` (the window paints from Qt's thread)."""
 
-    def __init__(self) -> None:
-        self.lock = threading.RLock()
+    def __init__(self, lock: threading.RLock | None = None) -> None:
+        self.lock = lock or threading.RLock()
         self.path = QImage(CANVAS_PIXELS, CANVAS_PIXELS, QImage.Format.Format_ARGB32)
         self._painter: QPainter | None = None
         self._pen = QPen()

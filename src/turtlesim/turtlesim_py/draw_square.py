@@ -11,8 +11,8 @@ from geometry_msgs.msg import Twist
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from std_srvs.srv import Empty
-
 from turtlesim.msg import Pose
+
 from turtlesim_py.turtle import TOPIC_QOS
 
 PI = 3.141592

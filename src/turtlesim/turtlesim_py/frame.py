@@ -5,6 +5,8 @@ from __future__ import annotations
 import json
 import math
 import re
+import sys
+import threading
 import time
 from array import array
 from pathlib import Path
@@ -16,16 +18,16 @@ from rcl_interfaces.msg import (
     ParameterType,
     SetParametersResult,
 )
-from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 from rclpy.exceptions import InvalidParameterTypeException, InvalidParameterValueException
+from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import QoSProfile, qos_profile_sensor_data, qos_profile_services_default
 from rclpy.service import Service
 from rclpy.service_introspection import ServiceIntrospectionState
 from std_srvs.srv import Empty, Trigger
-
 from turtlesim.srv import Kill, Spawn
+
 from turtlesim_py import sim
 from turtlesim_py.canvas import Canvas
 from turtlesim_py.turtle import Turtle
@@ -66,7 +68,12 @@ class TurtleFrame(Node):
         self.canvas_png = Path(canvas_png).absolute()
         self.fixed_step = fixed_step
         self.introspection = INTROSPECTION[introspection]
-        self.canvas = Canvas()
+        # One lock for all simulation state: the tick runs on its own thread (see start()),
+        # the executor's callbacks on the spinning thread, the window paints from Qt's.
+        self.lock = threading.RLock()
+        self.canvas = Canvas(self.lock)
+        self._stop = threading.Event()
+        self._ticker: threading.Thread | None = None
         self.turtles: dict[str, Turtle] = {}
         self._order: list[Turtle] = []
         self._deferred: list = []
@@ -92,11 +99,12 @@ class TurtleFrame(Node):
 
         # Deeper request queues than the default 10: a burst of 200 spawn calls sent at once
         # would otherwise lose all but the last few requests inside DDS.
-        self.create_service(Empty, 'clear', self._on_clear, qos_profile=GLOBAL_SERVICE_QOS)
-        self.create_service(Empty, 'reset', self._on_reset, qos_profile=GLOBAL_SERVICE_QOS)
-        self.create_service(Spawn, 'spawn', self._on_spawn, qos_profile=GLOBAL_SERVICE_QOS)
-        self.create_service(Kill, 'kill', self._on_kill, qos_profile=GLOBAL_SERVICE_QOS)
-        self.create_service(Trigger, '~/_save_canvas', self._on_save_canvas)
+        locked = self.locked
+        self.create_service(Empty, 'clear', locked(self._on_clear), qos_profile=GLOBAL_SERVICE_QOS)
+        self.create_service(Empty, 'reset', locked(self._on_reset), qos_profile=GLOBAL_SERVICE_QOS)
+        self.create_service(Spawn, 'spawn', locked(self._on_spawn), qos_profile=GLOBAL_SERVICE_QOS)
+        self.create_service(Kill, 'kill', locked(self._on_kill), qos_profile=GLOBAL_SERVICE_QOS)
+        self.create_service(Trigger, '~/_save_canvas', locked(self._on_save_canvas))
         self.clock_pub = None
         if fixed_step:
             from rosgraph_msgs.msg import Clock
@@ -108,7 +116,52 @@ class TurtleFrame(Node):
         self.get_logger().info(
             f'Starting turtlesim with node name {self.get_fully_qualified_name()}')
         self.spawn_turtle('', sim.CENTER, sim.CENTER, 0.0)
-        self.timer = self.create_timer(sim.FIXED_DT, self.on_tick)
+
+    # ---------------------------------------------------------------- ticking
+    def locked(self, callback):
+        """Wrap an executor callback so it never runs in the middle of a tick."""
+        lock = self.lock
+
+        def run(*args):
+            with lock:
+                return callback(*args)
+        return run
+
+    def start(self) -> None:
+        """Tick every 16 ms on a dedicated thread.
+
+        A ROS timer in the executor would share the executor's per-wait overhead, which grows
+        with the number of entities (about 15 per turtle): with 200 turtles rclpy's wait-set
+        rebuilds alone pushed the rate down to ~35 Hz. The thread keeps a steady 62.5 Hz.
+        """
+        # The executor thread holds the GIL for long stretches of pure Python; a short switch
+        # interval lets the tick thread in on time.
+        sys.setswitchinterval(0.0005)
+        self._ticker = threading.Thread(target=self._tick_loop, name='turtlesim-tick',
+                                        daemon=True)
+        self._ticker.start()
+
+    def stop(self) -> None:
+        self._stop.set()
+        if self._ticker is not None:
+            self._ticker.join(timeout=2.0)
+
+    def _tick_loop(self) -> None:
+        period = sim.FIXED_DT
+        deadline = time.monotonic()
+        while not self._stop.is_set():
+            delay = deadline - time.monotonic()
+            if delay > 0 and self._stop.wait(delay):
+                return
+            now = time.monotonic()
+            if now - deadline > period:  # late by more than a tick: do not burst to catch up
+                deadline = now
+            deadline += period
+            with self.lock:
+                try:
+                    self.on_tick()
+                except Exception as error:
+                    self.get_logger().error(f'Tick failed: {error!r}')
 
     # ---------------------------------------------------------------- helpers
     def configure_introspection(self, service: Service) -> None:
@@ -293,7 +346,7 @@ class TurtleFrame(Node):
             for turtle in self._order:
                 try:
                     turtle.update(dt, now)
-                except Exception as error:  # noqa: BLE001 - one bad turtle must not stop the sim
+                except Exception as error:
                     self.get_logger().error(f'Updating turtle [{turtle.name}] failed: {error!r}')
             self.canvas.end_drawing()
         if len(self.tick_costs) < 1_000_000:

@@ -8,8 +8,8 @@ import rclpy
 from geometry_msgs.msg import Twist
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
-
 from turtlesim.msg import Pose
+
 from turtlesim_py.turtle import TOPIC_QOS
 
 

@@ -15,8 +15,8 @@ from rclpy.action import ActionClient
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
-
 from turtlesim.action import RotateAbsolute
+
 from turtlesim_py.turtle import TOPIC_QOS
 
 INSTRUCTIONS = (
@@ -102,13 +102,13 @@ class TeleopTurtle(Node):
         elif command.kind == 'cancel' and self.goal_handle is not None:
             try:
                 self.goal_handle.cancel_goal_async()
-            except Exception:  # noqa: BLE001 - upstream ignores cancel errors
+            except Exception:
                 pass
 
     def _remember_goal(self, future) -> None:
         try:
             self.goal_handle = future.result()
-        except Exception:  # noqa: BLE001
+        except Exception:
             pass
 
 

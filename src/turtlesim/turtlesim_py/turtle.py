@@ -12,10 +12,10 @@ from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.action.server import ServerGoalHandle
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.task import Future
-
 from turtlesim.action import RotateAbsolute
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import SetPen, TeleportAbsolute, TeleportRelative
+
 from turtlesim_py import sim
 from turtlesim_py.canvas import SHELL_COLOURS
 
@@ -67,23 +67,24 @@ class Turtle:
         self._color = Color()
 
         node = frame
+        locked = frame.locked
         self.cmd_vel_sub = node.create_subscription(
-            Twist, f'{name}/cmd_vel', self._on_cmd_vel, TOPIC_QOS)
+            Twist, f'{name}/cmd_vel', locked(self._on_cmd_vel), TOPIC_QOS)
         self.pose_pub = node.create_publisher(Pose, f'{name}/pose', TOPIC_QOS)
         self.color_pub = node.create_publisher(Color, f'{name}/color_sensor', TOPIC_QOS)
         self.services = [
-            node.create_service(SetPen, f'{name}/set_pen', self._on_set_pen),
+            node.create_service(SetPen, f'{name}/set_pen', locked(self._on_set_pen)),
             node.create_service(TeleportAbsolute, f'{name}/teleport_absolute',
-                                self._on_teleport_absolute),
+                                locked(self._on_teleport_absolute)),
             node.create_service(TeleportRelative, f'{name}/teleport_relative',
-                                self._on_teleport_relative),
+                                locked(self._on_teleport_relative)),
         ]
         for service in self.services:
             frame.configure_introspection(service)
         self.action_server = ActionServer(
             node, RotateAbsolute, f'{name}/rotate_absolute',
             execute_callback=self._execute, goal_callback=self._on_goal,
-            handle_accepted_callback=self._on_accepted,
+            handle_accepted_callback=locked(self._on_accepted),
             cancel_callback=lambda _handle: CancelResponse.ACCEPT)
 
     # ---------------------------------------------------------------- inputs

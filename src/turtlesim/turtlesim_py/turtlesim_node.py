@@ -38,9 +38,7 @@ def display_available() -> bool:
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv if argv is None else argv
     args = parse_args(remove_ros_args(argv)[1:])
-    global _window_mode
     windowed = not args.headless and display_available()
-    _window_mode = windowed
     if not windowed:
         os.environ['QT_QPA_PLATFORM'] = 'offscreen'
     if windowed:
@@ -52,8 +50,9 @@ def main(argv: list[str] | None = None) -> int:
 
     from turtlesim_py.frame import TurtleFrame
 
-    # Our own handlers: Ctrl-C and SIGTERM raise KeyboardInterrupt in the spinning thread, so
-    # the canvas is saved and logged while the context is still valid, and we exit with 0.
+    # Our own handlers: Ctrl-C and SIGTERM only set a flag that the main thread (which never
+    # blocks in C) notices within 0.1 s; the canvas is then saved and logged while the context
+    # is still valid, and the process exits with 0.
     rclpy.init(args=argv, signal_handler_options=SignalHandlerOptions.NO)
     signal.signal(signal.SIGINT, _interrupt)
     signal.signal(signal.SIGTERM, _interrupt)
@@ -61,14 +60,20 @@ def main(argv: list[str] | None = None) -> int:
                        introspection=args.service_introspection)
     executor = make_executor()
     executor.add_node(node)
+    # ROS callbacks on a spinning thread, the tick on its own thread (TurtleFrame.start), the
+    # main thread waits for a signal (headless) or runs Qt (window).
+    spinner = threading.Thread(target=_spin_quietly, args=(executor,), name='ros-spin',
+                               daemon=True)
+    spinner.start()
+    node.start()
     try:
         if windowed:
-            _run_window(app, node, executor)
+            _run_window(app, node, spinner)
         else:
-            executor.spin()
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
+            while not _stop.is_set() and spinner.is_alive():
+                _stop.wait(0.1)
     finally:
+        node.stop()
         try:
             path = node.save_canvas()
             node.get_logger().info(f'Canvas written to {path}')
@@ -76,46 +81,41 @@ def main(argv: list[str] | None = None) -> int:
             node.get_logger().error(f'Could not write the canvas: {error}')
         if args.tick_stats:
             node.write_tick_stats(args.tick_stats)
-        executor.shutdown(timeout_sec=1.0)
+        executor.shutdown(timeout_sec=2.0)
+        spinner.join(timeout=2.0)
         node.destroy_node()
         rclpy.try_shutdown()
     return 0
 
 
-_stop_window = threading.Event()
+_stop = threading.Event()
 
 
 def make_executor():
-    if os.environ.get('TURTLESIM_EXECUTOR', 'events') == 'events':
+    """SingleThreadedExecutor. EventsExecutor (TURTLESIM_EXECUTOR=events) was measured: in
+    rclpy 7.1.6 it left /spawn unanswered and spun a core, so it is not the default."""
+    if os.environ.get('TURTLESIM_EXECUTOR') == 'events':
         from rclpy.experimental.events_executor import EventsExecutor
         return EventsExecutor()
     return SingleThreadedExecutor()
 
 
 def _interrupt(signum, frame) -> None:
-    if _window_mode:
-        _stop_window.set()  # the Qt timer notices it; raising inside a Qt slot is not safe
-    else:
-        raise KeyboardInterrupt
+    _stop.set()
 
 
-_window_mode = False
-
-
-def _run_window(app, node, executor) -> None:
-    """Qt owns the main thread; ROS spins on a worker thread; the canvas has its own lock."""
+def _run_window(app, node, spinner) -> None:
+    """Qt owns the main thread and repaints the window when the simulation changed."""
     from PySide6.QtCore import QTimer
 
     from turtlesim_py.window import CanvasWindow
 
     window = CanvasWindow(node)
     window.show()
-    spinner = threading.Thread(target=_spin_quietly, args=(executor,), daemon=True)
-    spinner.start()
     timer = QTimer()
 
     def refresh() -> None:
-        if _stop_window.is_set() or not spinner.is_alive():
+        if _stop.is_set() or not spinner.is_alive():
             app.quit()
         elif node.dirty:
             node.dirty = False
@@ -124,8 +124,6 @@ def _run_window(app, node, executor) -> None:
     timer.timeout.connect(refresh)
     timer.start(16)
     app.exec()
-    executor.shutdown(timeout_sec=1.0)
-    spinner.join(timeout=2)
 
 
 def _spin_quietly(executor) -> None:

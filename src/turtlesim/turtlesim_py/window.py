@@ -15,7 +15,7 @@ class CanvasWindow(QWidget):
         self.setWindowTitle('TurtleSim')
         self.setFixedSize(CANVAS_PIXELS, CANVAS_PIXELS)
 
-    def paintEvent(self, event) -> None:  # noqa: N802 - Qt API
+    def paintEvent(self, event) -> None:
         image = self.frame.composite()
         painter = QPainter(self)
         painter.drawImage(0, 0, image)

@@ -16,7 +16,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
     def verb(name: str, func, help_text: str) -> argparse.ArgumentParser:
         p = verbs.add_parser(name, help=help_text, description=help_text)
-        p.add_argument('--spin-time', type=float, default=None, help=argparse.SUPPRESS)
+        p.add_argument('--spin-time', type=float, default=None,
+                       help='Longest wait for discovery in seconds (default: 2 to list, 4 to '
+                       'find a named entity)')
         p.add_argument('-s', '--use-sim-time', action='store_true', help=argparse.SUPPRESS)
         p.add_argument('--no-daemon', action='store_true',
                        help='Do not spawn nor use an already running daemon (always the case)')
@@ -61,8 +63,9 @@ def _nodes(node, include_hidden: bool) -> list[str]:
 def _find_node(node, args: argparse.Namespace) -> str | None:
     from ros2cli_lite.api import wait_for_graph
     target = absolute(args.node_name)
+    timeout = getattr(args, 'timeout', None)
     wait_for_graph(node, ready=lambda: target in _nodes(node, args.include_hidden_nodes),
-                   settle=0.1, bound=max(4.0, float(getattr(args, 'timeout', 0) or 0)))
+                   settle=0.1, bound=None if timeout is None else max(4.0, float(timeout)))
     return target if target in _nodes(node, args.include_hidden_nodes) else None
 
 

@@ -18,7 +18,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         p = verbs.add_parser(name, help=help_text, description=help_text)
         p.add_argument(HIDDEN, action='store_true', dest='include_hidden_services_verb',
                        help=argparse.SUPPRESS)
-        p.add_argument('--spin-time', type=float, default=None, help=argparse.SUPPRESS)
+        p.add_argument('--spin-time', type=float, default=None,
+                       help='Longest wait for discovery in seconds (default: 2 to list, 4 to '
+                       'find a named entity)')
         p.add_argument('-s', '--use-sim-time', action='store_true', help=argparse.SUPPRESS)
         p.add_argument('--no-daemon', action='store_true',
                        help='Do not spawn nor use an already running daemon (always the case)')
