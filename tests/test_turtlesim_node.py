@@ -611,3 +611,28 @@ def test_set_pen_calls_are_visible_through_service_introspection(ts):
     assert kinds.count(ServiceEventInfo.REQUEST_RECEIVED) == 3
     assert kinds.count(ServiceEventInfo.RESPONSE_SENT) == 3
     assert elapsed < 3.0
+
+
+def test_reset_and_kill_during_rotation_abort_the_goal(ts):
+    from action_msgs.msg import GoalStatus
+    rotation = Rotation(ts, 3.0)
+    ts.probe.spin_for(0.2)
+    ts.call(Empty, '/reset')
+    assert rotation.result().status == GoalStatus.STATUS_ABORTED
+    rotation.destroy()
+    ts.probe.spin_for(0.3)
+    assert ts.call(Spawn, '/spawn', x=3.0, y=3.0, name='spinner').name == 'spinner'
+    client = ActionClient(ts.probe.node, RotateAbsolute, '/spinner/rotate_absolute')
+    assert client.wait_for_server(timeout_sec=10)
+    future = client.send_goal_async(RotateAbsolute.Goal(theta=2.0))
+    ts.probe.spin_until(future.done, 5, 'the goal response')
+    result = future.result().get_result_async()
+    ts.probe.spin_for(0.2)
+    ts.call(Kill, '/kill', name='spinner')
+    ts.probe.spin_until(result.done, 5, 'the aborted result')
+    assert result.result().status == GoalStatus.STATUS_ABORTED
+    client.destroy()
+    after_reset = Rotation(ts, 0.5)  # the new turtle1's action server works
+    assert after_reset.result().status == GoalStatus.STATUS_SUCCEEDED
+    after_reset.destroy()
+    assert 'Traceback' not in ts.new_output()

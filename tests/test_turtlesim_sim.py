@@ -103,8 +103,7 @@ def test_rotate_step_completes_within_tolerance_and_reports_start_minus_current(
     assert not sim.rotate_step(0.97, 1.0, 0.0).done
 
 
-def test_rotate_step_zero_remaining_counts_as_positive():
-    # Not done (tolerance 0 is impossible here) but check the sign rule through norm.
+def test_rotate_step_full_turn_goal_is_already_reached():
     step = sim.rotate_step(0.0, 2 * sim.UPSTREAM_PI, 0.0)
     assert step.done and step.remaining == pytest.approx(0.0, abs=1e-9)
 
@@ -127,7 +126,6 @@ def test_window_shows_the_composited_canvas():
 
     os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')
     from PySide6.QtWidgets import QApplication
-
     from turtlesim_py.canvas import Canvas
     from turtlesim_py.window import CanvasWindow
 

@@ -76,7 +76,7 @@ class TurtleFrame(Node):
         self._ticker: threading.Thread | None = None
         self.turtles: dict[str, Turtle] = {}
         self._order: list[Turtle] = []
-        self._deferred: list = []
+        self._retired: dict[str, object] = {}  # name -> action server awaiting destruction
         self.id_counter = 0
         self.dirty = True
         self._last_tick: float | None = None
@@ -244,7 +244,7 @@ class TurtleFrame(Node):
         elif name in self.turtles:
             self.get_logger().error(f'A turtle named [{name}] already exists')
             return ''
-        self.turtles[name] = Turtle(self, name, x, y, theta)
+        self.turtles[name] = Turtle(self, name, x, y, theta, self._retired.pop(name, None))
         self._order = [self.turtles[key] for key in sorted(self.turtles)]
         self.dirty = True
         self.get_logger().info(
@@ -254,9 +254,18 @@ class TurtleFrame(Node):
     def kill_turtle(self, name: str) -> None:
         turtle = self.turtles.pop(name)
         self._order = [self.turtles[key] for key in sorted(self.turtles)]
-        deferred = turtle.destroy()
-        if deferred is not None:
-            self._deferred.append(deferred)
+        server = turtle.destroy()
+        if server is not None:
+            self._retired[name] = server
+            timer = None
+
+            def destroy_later() -> None:
+                self.destroy_timer(timer)
+                if self._retired.get(name) is server:  # not adopted by a new turtle meanwhile
+                    del self._retired[name]
+                    server.destroy()
+
+            timer = self.create_timer(1.0, self.locked(destroy_later))
         self.dirty = True
 
     # ---------------------------------------------------------------- services
@@ -338,9 +347,6 @@ class TurtleFrame(Node):
         if started - self._last_tick > 1.5 * sim.FIXED_DT:
             self.missed_ticks += round((started - self._last_tick) / sim.FIXED_DT) - 1
         self._last_tick = started
-        deferred, self._deferred = self._deferred, []
-        for destroy in deferred:
-            destroy()
         now = self.now_seconds()
         with self.canvas.lock:
             for turtle in self._order:

@@ -47,7 +47,8 @@ class _Goal:
 
 
 class Turtle:
-    def __init__(self, frame: TurtleFrame, name: str, x: float, y: float, theta: float) -> None:
+    def __init__(self, frame: TurtleFrame, name: str, x: float, y: float, theta: float,
+                 action_server: ActionServer | None = None) -> None:
         self.frame = frame
         self.name = name
         self.log = frame.get_logger()
@@ -81,11 +82,17 @@ class Turtle:
         ]
         for service in self.services:
             frame.configure_introspection(service)
-        self.action_server = ActionServer(
-            node, RotateAbsolute, f'{name}/rotate_absolute',
-            execute_callback=self._execute, goal_callback=self._on_goal,
-            handle_accepted_callback=locked(self._on_accepted),
-            cancel_callback=lambda _handle: CancelResponse.ACCEPT)
+        if action_server is None:
+            action_server = ActionServer(
+                node, RotateAbsolute, f'{name}/rotate_absolute',
+                execute_callback=self._execute, goal_callback=self._on_goal,
+                handle_accepted_callback=locked(self._on_accepted),
+                cancel_callback=lambda _handle: CancelResponse.ACCEPT)
+        else:  # a retired server of a killed turtle with the same name: adopt it
+            action_server.register_execute_callback(self._execute)
+            action_server.register_goal_callback(self._on_goal)
+            action_server.register_handle_accepted_callback(locked(self._on_accepted))
+        self.action_server = action_server
 
     # ---------------------------------------------------------------- inputs
     def _on_cmd_vel(self, msg: Twist) -> None:
@@ -237,11 +244,12 @@ class Turtle:
     def sprite(self) -> tuple[float, float, float, tuple[int, int, int]]:
         return self.x, self.y_int, self.theta, self.shell
 
-    def destroy(self) -> Callable[[], None] | None:
-        """Remove every interface; returns a deferred destruction of the action server, if any.
+    def destroy(self) -> ActionServer | None:
+        """Remove every interface; returns the action server when it must outlive this call.
 
-        An active goal is aborted first; its execute coroutine finishes on a later executor
-        turn, so then the action server must outlive this call by a tick.
+        An active goal is aborted first; its execute coroutine and the client's result request
+        finish on later executor turns, so then the action server is handed back to the frame,
+        which destroys it a second later (or gives it to a new turtle of the same name).
         """
         deferred = False
         if self.goal is not None:
@@ -255,6 +263,6 @@ class Turtle:
         for service in self.services:
             node.destroy_service(service)
         if deferred:
-            return self.action_server.destroy
+            return self.action_server
         self.action_server.destroy()
         return None
