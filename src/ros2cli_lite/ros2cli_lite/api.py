@@ -40,6 +40,25 @@ def full_node_name(name: str, namespace: str) -> str:
 # The CLI node and graph discovery
 # --------------------------------------------------------------------------------------
 
+def add_graph_verb(verbs: Any, name: str, func: Callable, help_text: str,
+                   hidden_flag: str | None = None, hidden_dest: str | None = None) -> Any:
+    """A verb parser with the options every graph verb shares (as ros2cli's verbs do)."""
+    import argparse
+
+    parser = verbs.add_parser(name, help=help_text, description=help_text)
+    if hidden_flag:  # also accepted after the verb, as ros2cli does
+        parser.add_argument(hidden_flag, action='store_true', dest=hidden_dest,
+                            help=argparse.SUPPRESS)
+    parser.add_argument('--spin-time', type=float, default=None,
+                        help='Longest wait for discovery in seconds (default: 2 to list, 4 '
+                        'to find a named entity)')
+    parser.add_argument('-s', '--use-sim-time', action='store_true', help=argparse.SUPPRESS)
+    parser.add_argument('--no-daemon', action='store_true',
+                        help='Do not spawn nor use an already running daemon (always the case)')
+    parser.set_defaults(_main=func)
+    return parser
+
+
 @contextmanager
 def cli_node(name: str | None = None, discover: bool = True) -> Iterator[Any]:
     """A hidden node `_ros2cli_<pid>` in a fresh context, torn down on exit.

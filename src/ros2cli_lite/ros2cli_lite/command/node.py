@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ros2cli_lite.api import full_node_name, is_hidden, is_hidden_node
+from ros2cli_lite.api import add_graph_verb, full_node_name, is_hidden, is_hidden_node
 
 DUPLICATE_WARNING = ('WARNING: Be aware that there are nodes in the graph that share an exact '
                      'name, which can have unintended side effects.')
@@ -15,15 +15,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     verbs = parser.add_subparsers(title='Commands', metavar='Call')
 
     def verb(name: str, func, help_text: str) -> argparse.ArgumentParser:
-        p = verbs.add_parser(name, help=help_text, description=help_text)
-        p.add_argument('--spin-time', type=float, default=None,
-                       help='Longest wait for discovery in seconds (default: 2 to list, 4 to '
-                       'find a named entity)')
-        p.add_argument('-s', '--use-sim-time', action='store_true', help=argparse.SUPPRESS)
-        p.add_argument('--no-daemon', action='store_true',
-                       help='Do not spawn nor use an already running daemon (always the case)')
-        p.set_defaults(_main=func)
-        return p
+        return add_graph_verb(verbs, name, func, help_text)
 
     p = verb('list', list_verb, 'Output a list of available nodes')
     p.add_argument('-a', '--all', action='store_true',

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ros2cli_lite.api import add_graph_verb
+
 TYPE_NAMES = {
     0: 'not set', 1: 'boolean', 2: 'integer', 3: 'double', 4: 'string', 5: 'byte array',
     6: 'boolean array', 7: 'integer array', 8: 'double array', 9: 'string array',
@@ -15,17 +17,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     verbs = parser.add_subparsers(title='Commands', metavar='Call')
 
     def verb(name: str, func, help_text: str) -> argparse.ArgumentParser:
-        p = verbs.add_parser(name, help=help_text, description=help_text)
-        p.add_argument('--spin-time', type=float, default=None,
-                       help='Longest wait for discovery in seconds (default: 2 to list, 4 to '
-                       'find a named entity)')
-        p.add_argument('-s', '--use-sim-time', action='store_true', help=argparse.SUPPRESS)
-        p.add_argument('--no-daemon', action='store_true',
-                       help='Do not spawn nor use an already running daemon (always the case)')
-        p.add_argument('--include-hidden-nodes', action='store_true',
-                       help='Consider hidden nodes as well')
-        p.set_defaults(_main=func)
-        return p
+        parser = add_graph_verb(verbs, name, func, help_text)
+        parser.add_argument('--include-hidden-nodes', action='store_true',
+                            help='Consider hidden nodes as well')
+        return parser
 
     p = verb('list', list_verb, 'Output a list of available parameters')
     p.add_argument('node_name', nargs='?', help='Name of the ROS node')

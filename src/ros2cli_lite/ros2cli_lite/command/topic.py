@@ -8,7 +8,7 @@ import math
 import sys
 import time
 
-from ros2cli_lite.api import is_hidden
+from ros2cli_lite.api import add_graph_verb, is_hidden
 
 HIDDEN = '--include-hidden-topics'
 
@@ -18,17 +18,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     verbs = parser.add_subparsers(title='Commands', metavar='Call')
 
     def verb(name: str, func, help_text: str) -> argparse.ArgumentParser:
-        p = verbs.add_parser(name, help=help_text, description=help_text)
-        p.add_argument(HIDDEN, action='store_true', dest='include_hidden_topics_verb',
-                       help=argparse.SUPPRESS)
-        p.add_argument('--spin-time', type=float, default=None,
-                       help='Longest wait for discovery in seconds (default: 2 to list, 4 to '
-                       'find a named entity)')
-        p.add_argument('-s', '--use-sim-time', action='store_true', help=argparse.SUPPRESS)
-        p.add_argument('--no-daemon', action='store_true',
-                       help='Do not spawn nor use an already running daemon (always the case)')
-        p.set_defaults(_main=func)
-        return p
+        return add_graph_verb(verbs, name, func, help_text, HIDDEN, 'include_hidden_topics_verb')
 
     p = verb('list', list_verb, 'Output a list of available topics')
     p.add_argument('-t', '--show-types', action='store_true',
