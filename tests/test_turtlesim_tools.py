@@ -156,6 +156,7 @@ def test_draw_square_drives_a_square(launch, tmp_path):
                            r'0\.000000\]$')
     square.wait_for_output(r'\[draw_square\]: Reached goal$', timeout=15)
     square.wait_for_output(r'New goal \[7\.5\d+ 5\.5\d+, 1\.57\d+\]$', timeout=5)
+    assert square.stop() == 0 and 'Traceback' not in square.output, square.output
 
 
 def test_mimic_copies_velocities(launch, probe, tmp_path):
@@ -163,8 +164,8 @@ def test_mimic_copies_velocities(launch, probe, tmp_path):
                  str(tmp_path / 'c.png'))
     sim.wait_for_output(r'Spawning turtle \[turtle1\]')
     assert probe.call(Spawn, '/spawn', Spawn.Request(x=2.0, y=2.0, name='turtle2')).name
-    launch('turtlesim', 'mimic', '--ros-args', '-r', 'input/pose:=/turtle1/pose',
-           '-r', 'output/cmd_vel:=/turtle2/cmd_vel')
+    mimic = launch('turtlesim', 'mimic', '--ros-args', '-r', 'input/pose:=/turtle1/pose',
+                   '-r', 'output/cmd_vel:=/turtle2/cmd_vel')
     poses = probe.collect(Pose, '/turtle2/pose', turtle_qos())
     publisher = probe.node.create_publisher(Twist, '/turtle1/cmd_vel', turtle_qos())
     probe.spin_until(lambda: publisher.get_subscription_count() > 0, 10, 'turtle1/cmd_vel')
@@ -176,3 +177,5 @@ def test_mimic_copies_velocities(launch, probe, tmp_path):
     publisher.publish(twist)
     probe.spin_until(lambda: poses and poses[-1].angular_velocity == 0.5, 5, 'turtle2 turning')
     assert poses[-1].linear_velocity == 1.0
+    # Ctrl-C while mimic is busy copying poses: a clean exit, no traceback.
+    assert mimic.stop() == 0 and 'Traceback' not in mimic.output, mimic.output

@@ -1,11 +1,10 @@
 """Serve /add_two_ints: answer each request with the sum of its two integers."""
 
-import rclpy
 from example_interfaces.srv import AddTwoInts
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 from my_robot_controller.int64 import INT64_RANGE, fits_int64
+from my_robot_controller.spinning import ros_session, spin_until_stopped
 
 
 class AddTwoIntsServer(Node):
@@ -31,14 +30,8 @@ class AddTwoIntsServer(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    try:
-        rclpy.init(args=args)
-        rclpy.spin(AddTwoIntsServer())
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        rclpy.try_shutdown()
-
+    with ros_session(args) as stop:
+        spin_until_stopped(AddTwoIntsServer(), stop)
 
 if __name__ == '__main__':
     main()

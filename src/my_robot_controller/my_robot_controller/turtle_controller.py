@@ -12,7 +12,6 @@ import sys
 import time
 from dataclasses import asdict
 
-import rclpy
 from geometry_msgs.msg import Twist
 from rcl_interfaces.msg import (
     FloatingPointRange,
@@ -22,7 +21,6 @@ from rcl_interfaces.msg import (
     ParameterValue,
     SetParametersResult,
 )
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
@@ -30,6 +28,7 @@ from rclpy.task import Future
 from turtlesim.msg import Pose
 from turtlesim.srv import SetPen
 
+from my_robot_controller.spinning import ros_session, spin_until_stopped
 from my_robot_controller.turtle_logic import (
     DEFAULTS,
     PARAMETERS,
@@ -261,20 +260,14 @@ def _parameter_value(value: int | float) -> ParameterValue:
 
 
 def main(args: list[str] | None = None) -> int:
-    try:
-        rclpy.init(args=args)
+    with ros_session(args) as stop:
         try:
             node = TurtleController()
         except ParameterError as error:
             print(f'turtle_controller: error: {error}', file=sys.stderr)
             return 2
-        rclpy.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        rclpy.try_shutdown()
+        spin_until_stopped(node, stop)
     return 0
-
 
 if __name__ == '__main__':
     sys.exit(main())

@@ -6,13 +6,12 @@ import math
 import sys
 from enum import Enum
 
-import rclpy
 from geometry_msgs.msg import Twist
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from std_srvs.srv import Empty
 from turtlesim.msg import Pose
 
+from turtlesim_py.spinning import ros_session, spin_until_stopped
 from turtlesim_py.turtle import TOPIC_QOS
 
 PI = 3.141592
@@ -110,13 +109,6 @@ class DrawSquare(Node):
 
 
 def main(argv: list[str] | None = None) -> int:
-    rclpy.init(args=sys.argv if argv is None else argv)
-    node = DrawSquare()
-    try:
-        rclpy.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
+    with ros_session(sys.argv if argv is None else argv) as stop:
+        spin_until_stopped(DrawSquare(), stop)
     return 0

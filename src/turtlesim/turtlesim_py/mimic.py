@@ -4,12 +4,11 @@ from __future__ import annotations
 
 import sys
 
-import rclpy
 from geometry_msgs.msg import Twist
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from turtlesim.msg import Pose
 
+from turtlesim_py.spinning import ros_session, spin_until_stopped
 from turtlesim_py.turtle import TOPIC_QOS
 
 
@@ -31,13 +30,6 @@ class Mimic(Node):
 
 
 def main(argv: list[str] | None = None) -> int:
-    rclpy.init(args=sys.argv if argv is None else argv)
-    node = Mimic()
-    try:
-        rclpy.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
+    with ros_session(sys.argv if argv is None else argv) as stop:
+        spin_until_stopped(Mimic(), stop)
     return 0
