@@ -15,7 +15,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 
 import rclpy
-from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from rclpy.executors import Executor, ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
 
@@ -37,9 +37,10 @@ def ros_session(args: list[str] | None = None) -> Iterator[threading.Event]:
         rclpy.try_shutdown()
 
 
-def spin_until_stopped(node: Node, stop: threading.Event) -> None:
+def spin_until_stopped(node: Node, stop: threading.Event,
+                       executor: Executor | None = None) -> None:
     """Spin `node` until `stop` is set (by a signal) or the context is shut down."""
-    executor = SingleThreadedExecutor()
+    executor = executor or SingleThreadedExecutor()
     executor.add_node(node)
     try:
         while not stop.is_set() and rclpy.ok():

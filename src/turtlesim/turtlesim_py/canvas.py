@@ -36,7 +36,11 @@ class Canvas:
 
     def draw_line(self, x0: float, y0: float, x1: float, y1: float,
                   rgb: tuple[int, int, int], width: int) -> None:
-        """A segment between two internal positions (metres, y downward); one painter per tick."""
+        """A segment between two internal positions (metres, y downward).
+
+        The painter stays open from tick to tick (opening one and setting its pen every tick
+        was a third of a tick's cost); whoever reads the whole image ends it first.
+        """
         if self._painter is None:
             self._painter = QPainter(self.path)
         key = (*rgb, width)

@@ -69,8 +69,10 @@ class Turtle:
 
         node = frame
         locked = frame.locked
+        # Taken by the tick itself (take_commands), never by the executor: see PolledByTick.
         self.cmd_vel_sub = node.create_subscription(
-            Twist, f'{name}/cmd_vel', locked(self._on_cmd_vel), TOPIC_QOS)
+            Twist, f'{name}/cmd_vel', self._on_cmd_vel, TOPIC_QOS,
+            callback_group=frame.polled_by_tick)
         self.pose_pub = node.create_publisher(Pose, f'{name}/pose', TOPIC_QOS)
         self.color_pub = node.create_publisher(Color, f'{name}/color_sensor', TOPIC_QOS)
         self.services = [
@@ -95,6 +97,13 @@ class Turtle:
         self.action_server = action_server
 
     # ---------------------------------------------------------------- inputs
+    def take_commands(self) -> None:
+        """Apply every cmd_vel received since the last tick, oldest first."""
+        handle = self.cmd_vel_sub.handle
+        with handle:
+            while (taken := handle.take_message(Twist, False)) is not None:
+                self._on_cmd_vel(taken[0])
+
     def _on_cmd_vel(self, msg: Twist) -> None:
         for field, value in (('linear.x', msg.linear.x), ('linear.y', msg.linear.y),
                              ('angular.z', msg.angular.z)):
@@ -199,6 +208,7 @@ class Turtle:
     # ---------------------------------------------------------------- tick
     def update(self, dt: float, now: float) -> None:
         canvas = self.frame.canvas
+        self.take_commands()
         if self.teleports:
             for kind, a, b, c in self.teleports:
                 old_x, old_y = self.x, self.y_int
@@ -212,7 +222,8 @@ class Turtle:
                                      self.pen_width)
             self.teleports.clear()
             self.frame.dirty = True
-        self._step_goal()
+        if self.goal is not None:
+            self._step_goal()
         if now - self.last_command > sim.CMD_VEL_TIMEOUT:
             self.vx = self.vy = self.w = 0.0
         old_x, old_y, old_theta = self.x, self.y_int, self.theta
@@ -222,17 +233,21 @@ class Turtle:
             x, y = sim.clamp_to_walls(x, y)
         self.x, self.y_int, self.theta = x, y, theta
 
-        pose = self._pose
-        pose.x = x
-        pose.y = sim.CANVAS_HEIGHT - y
-        pose.theta = theta
-        pose.linear_velocity = min(sim.pose_linear_velocity(self.vx, self.vy), sim.FLOAT32_MAX)
-        pose.angular_velocity = self.w
-        self.pose_pub.publish(pose)
-
-        color = self._color
-        color.r, color.g, color.b = canvas.rgb_at(*sim.to_pixel(x, y))
-        self.color_pub.publish(color)
+        # Nobody listening: skip building and publishing. A subscriber that matches later
+        # could not have received this sample anyway (volatile durability).
+        if self.pose_pub.get_subscription_count():
+            pose = self._pose
+            pose.x = x
+            pose.y = sim.CANVAS_HEIGHT - y
+            pose.theta = theta
+            pose.linear_velocity = min(sim.pose_linear_velocity(self.vx, self.vy),
+                                       sim.FLOAT32_MAX)
+            pose.angular_velocity = self.w
+            self.pose_pub.publish(pose)
+        if self.color_pub.get_subscription_count():
+            color = self._color
+            color.r, color.g, color.b = canvas.rgb_at(*sim.to_pixel(x, y))
+            self.color_pub.publish(color)
 
         if x != old_x or y != old_y:
             if self.pen_on:
