@@ -54,8 +54,11 @@ def write_plots(data: dict) -> list[Path]:
         written.append(_save(fig, 'roundtrip_cdf.png'))
     if 'latency' in data:
         fig, ax = plt.subplots(figsize=(6, 4))
-        ax.hist(data['latency'], bins=60)
-        ax.set(xlabel='publish to callback (ms)', ylabel='poses', title='/turtle1/pose latency')
+        for label, samples in data['latency'].items():
+            ax.hist(samples, bins=60, alpha=0.6, label=label)
+        ax.set(xlabel='publish to callback (ms)', ylabel='poses',
+               title='Pose latency, same subscriber, same run')
+        ax.legend()
         written.append(_save(fig, 'pose_latency.png'))
     scale = [r for r in data.get('scale', []) if 'error' not in r]
     if scale:
