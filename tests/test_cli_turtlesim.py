@@ -1,27 +1,13 @@
 """The turtlesim tutorial's `ros2` commands against the real turtlesim_node (headless)."""
 
-import os
 import re
 import time
-from pathlib import Path
 
 import pytest
-from ament_index_python.packages import PackageNotFoundError, get_package_prefix
 
-from support import ros2
+from support import rerun_once_for_discovery, ros2
 
-
-def _turtlesim_node() -> Path | None:
-    try:
-        path = Path(get_package_prefix('turtlesim')) / 'lib' / 'turtlesim' / 'turtlesim_node'
-    except PackageNotFoundError:
-        return None
-    return path if os.access(path, os.X_OK) else None
-
-
-pytestmark = pytest.mark.skipif(
-    _turtlesim_node() is None,
-    reason='turtlesim_node is not built yet (install/turtlesim/lib/turtlesim/turtlesim_node)')
+pytestmark = rerun_once_for_discovery()
 
 PARAM_SERVICES = ['describe_parameters', 'get_parameter_types', 'get_parameters',
                   'get_type_description', 'list_parameters', 'set_parameters',
