@@ -19,6 +19,7 @@ MEASURE_S = 10.0
 SAMPLED_TURTLES = 8
 TARGET_HZ = 62.5
 TICK_S = 0.016
+CALL_DELAY_S = 0.5  # the longest a set_pen call may take to follow its crossing
 CONTROLLER_AT = 200
 SPAWN_BATCH = 8
 
@@ -81,20 +82,23 @@ def run_one(session: Session, count: int) -> dict:
                 Pose, f'/{name}/pose',
                 lambda _m, info, n=name: stamps[n].append(info['source_timestamp']), 7)
 
-        crossings, calls = [0], [0]
+        # Crossings by turtle1's pose source timestamps, calls by the server's event stamps
+        # (both the host's clock), so that a probe lagging under load counts them alike.
+        crossings: list[int] = []
+        calls: list[int] = []
         if with_controller:
             session.start('my_robot_controller', 'turtle_controller')
             last_side = [None]
 
-            def on_turtle1_pose(pose: Pose) -> None:
+            def on_turtle1_pose(pose: Pose, info: dict) -> None:
                 side = pose.x >= 5.5
                 if last_side[0] is not None and side != last_side[0]:
-                    crossings[0] += 1
+                    crossings.append(info['source_timestamp'])
                 last_side[0] = side
 
             def on_set_pen_event(event) -> None:
                 if event.info.event_type == ServiceEventInfo.REQUEST_RECEIVED:
-                    calls[0] += 1
+                    calls.append(event.info.stamp.sec * 10**9 + event.info.stamp.nanosec)
 
             probe.node.create_subscription(Pose, '/turtle1/pose', on_turtle1_pose, 7)
             probe.node.create_subscription(SetPen.Event, '/turtle1/set_pen/_service_event',
@@ -102,10 +106,18 @@ def run_one(session: Session, count: int) -> dict:
         probe.spin_for(2.0)  # let every turtle start moving and discovery settle
         for values in stamps.values():
             values.clear()
-        calls_before, crossings[0] = calls[0], 0
+        window = (time.time_ns(), time.time_ns() + int(MEASURE_S * 1e9))
         probe.spin_for(MEASURE_S)
+        probe.spin_for(2 * CALL_DELAY_S)  # what was sent in the window, received late
+        for values in stamps.values():
+            values[:] = [t for t in values if window[0] <= t < window[1]]
         rates = [len(values) / MEASURE_S for values in stamps.values()]
-        calls_during = calls[0] - calls_before
+        if with_controller:
+            crossings_during = sum(window[0] <= t < window[1] for t in crossings)
+            # A call answers the crossing before it (within CALL_DELAY_S): count the calls
+            # of the window shifted by that much.
+            shift = int(CALL_DELAY_S * 1e9)
+            calls_during = sum(window[0] + shift <= t < window[1] + shift for t in calls)
     finally:
         probe.close()
         sim.stop(timeout=20.0)
@@ -117,7 +129,7 @@ def run_one(session: Session, count: int) -> dict:
         'count': count, 'rate_min': min(rates), 'rate_mean': sum(rates) / len(rates),
         'tick_mean_ms': stats['cost_mean_ms'], 'tick_p99_ms': stats['cost_p99_ms'],
         'missed': missed, 'ticks': round(MEASURE_S / TICK_S),
-        'crossings': crossings[0] if with_controller else None,
+        'crossings': crossings_during if with_controller else None,
         'set_pen_calls': calls_during if with_controller else None,
     }
 
