@@ -33,5 +33,6 @@ def main(args: list[str] | None = None) -> None:
     with ros_session(args) as stop:
         spin_until_stopped(AddTwoIntsServer(), stop)
 
+
 if __name__ == '__main__':
     main()

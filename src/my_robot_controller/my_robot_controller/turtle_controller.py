@@ -268,10 +268,11 @@ def main(args: list[str] | None = None) -> int:
             print(f'turtle_controller: error: {error}', file=sys.stderr)
             return 2
         # rclpy's EventsExecutor (C++) instead of the default SingleThreadedExecutor, which
-        # rebuilds its wait set in Python at every wake-up: 62.5 poses a second cost the
+        # rebuilds its wait set in Python at every wake-up: 62.5 poses a second cost
         # the controller about 3 % of a core more that way (bench/cpu.py).
         spin_until_stopped(node, stop, EventsExecutor())
     return 0
+
 
 if __name__ == '__main__':
     sys.exit(main())
