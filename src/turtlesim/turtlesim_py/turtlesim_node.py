@@ -130,11 +130,15 @@ def _run_window(app, node, spinner) -> None:
 
 
 def _spin_quietly(executor) -> None:
-    # spin_once with a timeout rather than spin(): the EventsExecutor's spin() keeps a core
-    # busy in rclpy 7.1.6, its spin_once does not.
     try:
-        while not _stop.is_set() and rclpy.ok():
-            executor.spin_once(timeout_sec=0.1)
+        if isinstance(executor, SingleThreadedExecutor):
+            # Blocks until executor.shutdown() at the end of main(): no idle wake-ups (each
+            # costs a Python wait-set rebuild).
+            executor.spin()
+        else:
+            # The EventsExecutor's spin() keeps a core busy in rclpy 7.1.6; spin_once does not.
+            while not _stop.is_set() and rclpy.ok():
+                executor.spin_once(timeout_sec=0.1)
     except (KeyboardInterrupt, ExternalShutdownException, ShutdownException):
         pass
 
