@@ -125,6 +125,8 @@ class RosProcess:
 class TestNode:
     """An rclpy node in a private context on the test's domain, spun on demand."""
 
+    __test__ = False  # a helper, not a test class for pytest to collect
+
     def __init__(self, domain: int, name: str = 'test_probe') -> None:
         self.context = Context()
         rclpy.init(context=self.context, domain_id=domain)
