@@ -106,7 +106,8 @@ def run_one(session: Session, count: int) -> dict:
         probe.spin_for(2.0)  # let every turtle start moving and discovery settle
         for values in stamps.values():
             values.clear()
-        window = (time.time_ns(), time.time_ns() + int(MEASURE_S * 1e9))
+        start_ns = time.time_ns()
+        window = (start_ns, start_ns + int(MEASURE_S * 1e9))
         probe.spin_for(MEASURE_S)
         probe.spin_for(2 * CALL_DELAY_S)  # what was sent in the window, received late
         for values in stamps.values():
