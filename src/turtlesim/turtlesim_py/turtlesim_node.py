@@ -7,6 +7,7 @@ import os
 import signal
 import sys
 import threading
+import time
 
 import rclpy
 from rclpy.executors import ExternalShutdownException, ShutdownException, SingleThreadedExecutor
@@ -70,8 +71,12 @@ def main(argv: list[str] | None = None) -> int:
         if windowed:
             _run_window(app, node, spinner)
         else:
+            # Sleep, never _stop.wait(): the signal handler runs on this same thread and calls
+            # _stop.set(), which takes the event's non-reentrant lock; landing while wait()
+            # holds that lock, it would wait for itself forever. (A turtlesim once hung on
+            # SIGTERM in a test run this way, as far as the evidence goes.)
             while not _stop.is_set() and spinner.is_alive():
-                _stop.wait(0.1)
+                time.sleep(0.1)
     finally:
         node.stop()
         try:
