@@ -2,9 +2,11 @@
 
 Both nodes run as child processes; their output is forwarded line by line with a
 `[turtlesim]` / `[turtle_controller]` prefix. Ctrl-C, SIGTERM, `--seconds N` running out, or
-either node exiting stops both (Ctrl-C first, then SIGTERM, then SIGKILL), turtlesim last so
-that it can write the final canvas PNG (which the launcher first asks it for over
-/turtlesim/_save_canvas). Every child is in its own process group and gets SIGTERM
+either node exiting stops both (Ctrl-C first, then SIGTERM, then SIGKILL). The launcher first
+asks turtlesim for the canvas PNG over /turtlesim/_save_canvas, then stops turtlesim (which
+writes the PNG again as it exits) and only then the controller: stopped the other way round,
+the turtle drove on for up to a second with nobody to switch its pen, and the final canvas
+could show red right of the boundary. Every child is in its own process group and gets SIGTERM
 from the kernel should this launcher die, so no process is ever left behind.
 """
 
@@ -54,7 +56,7 @@ class Child:
     def __init__(self, label: str, argv: list[str], env: dict[str, str]) -> None:
         self.label = label
         # A session of its own: a Ctrl-C in the terminal reaches only the launcher, which
-        # then stops the nodes in the right order (controller first, turtlesim last).
+        # then stops the nodes in the right order (turtlesim first, then the controller).
         self.popen = subprocess.Popen(
             argv, env=env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
             stderr=subprocess.STDOUT, start_new_session=True, preexec_fn=_die_with_parent)
@@ -211,7 +213,7 @@ def main(argv: list[str] | None = None) -> int:
         if children and children[0].running():
             saved = save_canvas(int(env['ROS_DOMAIN_ID']))
         before = canvas.stat().st_mtime_ns if canvas.exists() else None
-        for child in reversed(children):  # controller first, turtlesim last
+        for child in children:  # turtlesim first: no driving without a controller
             code = child.stop()
             say(f'{child.label} exited with code {code}')
     if saved or (canvas.exists() and canvas.stat().st_mtime_ns != before):
