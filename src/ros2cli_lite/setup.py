@@ -1,3 +1,5 @@
+from glob import glob
+
 from setuptools import find_packages, setup
 
 package_name = 'ros2cli_lite'
@@ -9,6 +11,9 @@ setup(
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
+        # The commands this package adds to `ros2` (see ros2cli_lite/cli.py).
+        ('share/ament_index/resource_index/ros2cli_lite.command',
+         sorted(glob('resource/commands/*'))),
     ],
     install_requires=['setuptools'],
     zip_safe=True,

@@ -1,35 +1,57 @@
-"""`ros2 <command> <verb> ...`: parse the command line and dispatch to the command modules."""
+"""`ros2 <command> <verb> ...`: parse the command line and dispatch to the command modules.
+
+Commands come from the ament index, as ros2cli's come from entry points: a package adds a
+command by installing `share/ament_index/resource_index/ros2cli_lite.command/<name>`, whose
+first line is the module (with `add_arguments(parser)`, verbs setting `_main`) and whose
+second line is the help text. Only the invoked command's module is imported, so a verb pays
+for nothing it does not use.
+"""
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import signal
 import sys
 
 from ros2cli_lite.api import CliError
 
-COMMANDS = {
-    'interface': 'Show information about ROS interfaces',
-    'node': 'Various node related sub-commands',
-    'param': 'Various param related sub-commands',
-    'run': 'Run a package specific executable',
-    'service': 'Various service related sub-commands',
-    'topic': 'Various topic related sub-commands',
-}
+RESOURCE_TYPE = 'ros2cli_lite.command'
 
 
-def build_parser() -> argparse.ArgumentParser:
+def registered_commands() -> dict[str, tuple[str, str]]:
+    """{command: (module, help)} from the ament index; the first prefix to name one wins."""
+    commands: dict[str, tuple[str, str]] = {}
+    for prefix in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep):
+        directory = os.path.join(prefix, 'share', 'ament_index', 'resource_index', RESOURCE_TYPE)
+        try:
+            names = os.listdir(directory)
+        except OSError:
+            continue
+        for name in names:
+            if name in commands or name.startswith('.'):
+                continue
+            with open(os.path.join(directory, name), encoding='utf-8') as resource:
+                lines = resource.read().splitlines()
+            if lines:
+                commands[name] = (lines[0].strip(), lines[1].strip() if len(lines) > 1 else '')
+    return dict(sorted(commands.items()))
+
+
+def build_parser(commands: dict[str, tuple[str, str]], only: str | None = None
+                 ) -> argparse.ArgumentParser:
+    """The `ros2` parser; with `only`, the other commands get no verbs (nothing imported)."""
     parser = argparse.ArgumentParser(
         prog='ros2', description='ros2 is an extensible command-line tool for ROS 2.',
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--use-python-default-buffering', action='store_true',
                         help='Do not force line buffering in stdout (accepted, no effect)')
     sub = parser.add_subparsers(title='Commands', dest='_command', metavar='Call')
-    for name, help_text in COMMANDS.items():
-        module = importlib.import_module(f'ros2cli_lite.command.{name}')
+    for name, (module_name, help_text) in commands.items():
         command = sub.add_parser(name, help=help_text, description=help_text)
-        module.add_arguments(command)
+        if only in (None, name):
+            importlib.import_module(module_name).add_arguments(command)
     return parser
 
 
@@ -39,7 +61,9 @@ def main(argv: list[str] | None = None) -> int | str:
         # `ros2 run` passes everything after the executable through untouched.
         from ros2cli_lite.command import run
         return _guard(lambda: run.main_argv(argv[1:]))
-    parser = build_parser()
+    commands = registered_commands()
+    wanted = next((word for word in argv if not word.startswith('-')), None)
+    parser = build_parser(commands, only=wanted if wanted in commands else None)
     args = parser.parse_args(argv)
     if args._command is None:
         parser.print_help()
@@ -64,7 +88,6 @@ def _guard(call) -> int:
         return int(signal.SIGINT)
     except BrokenPipeError:
         # The reader went away (`ros2 ... | head`): stop quietly, as a shell tool does.
-        import os
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 1
     if isinstance(result, str):
