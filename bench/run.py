@@ -12,6 +12,7 @@ import json
 import time
 
 import cpu
+import daemon
 import latency
 import report
 import roundtrip
@@ -25,6 +26,7 @@ SUITE = {
     'scale': lambda s, quick: scale.run(s, counts=(1, 50) if quick else scale.COUNTS),
     'cpu': lambda s, quick: cpu.run(s, duration=8.0 if quick else cpu.DURATION_S),
     'setup': lambda s, quick: setup_time.run(s),
+    'daemon': lambda s, quick: daemon.run(s, calls=20 if quick else daemon.CALLS),
 }
 
 

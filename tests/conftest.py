@@ -8,7 +8,14 @@ from pathlib import Path
 
 import pytest
 
-from support import RosProcess, TestNode, executable, leased_domain, ros_environment
+from support import (
+    RosProcess,
+    TestNode,
+    executable,
+    leased_domain,
+    ros_environment,
+    stop_daemon,
+)
 
 if not os.environ.get('_ROS_WHEELS_BOOTSTRAP_COMPLETE'):
     pytest.exit('run the tests through scripts/test (it sources the workspace)', returncode=4)
@@ -21,8 +28,10 @@ def domain() -> Iterator[int]:
 
 
 @pytest.fixture
-def ros_env(domain: int) -> dict[str, str]:
-    return ros_environment(domain)
+def ros_env(domain: int) -> Iterator[dict[str, str]]:
+    env = ros_environment(domain)
+    yield env
+    stop_daemon(env)  # graph verbs start a daemon for the test's domain: leave none behind
 
 
 @pytest.fixture

@@ -221,15 +221,12 @@ def stand_in_argv(*args: str) -> list[str]:
 
 # --- ros2 CLI tests (tests/test_cli_*.py) -------------------------------------------------------
 
-def rerun_once_for_discovery() -> Any:
-    """Mark for tests that read the ROS graph through a fresh `ros2` process.
-
-    Without a daemon, such a process is now and then not discovered in time while the
-    machine is loaded (Fast DDS localhost discovery; README, Platform limits): the user's
-    remedy, running the command again, is the test's too. Failing twice still fails.
-    """
-    import pytest
-    return pytest.mark.flaky(reruns=1)
+def stop_daemon(env: dict[str, str]) -> None:
+    """Stop the `ros2` graph daemon of `env`'s settings, if a command of the test started one."""
+    from ros2cli_lite.daemon import client, protocol
+    path = protocol.socket_path(env)
+    if path.exists() or path.with_suffix('.lock').exists():
+        client.stop(path)
 
 
 def ros2(env: dict[str, str], *args: str, timeout: float = 30.0,

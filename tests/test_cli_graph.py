@@ -7,9 +7,7 @@ import time
 
 import pytest
 
-from support import cli_test_node_argv, rerun_once_for_discovery, ros2
-
-pytestmark = rerun_once_for_discovery()
+from support import cli_test_node_argv, ros2
 
 PARAM_SERVICES = [
     ('/cli_test_node/describe_parameters', 'rcl_interfaces/srv/DescribeParameters'),
@@ -45,9 +43,13 @@ def check(result, stdout, stderr='', code=0):
 def test_node_list_and_info(ros_env, node):
     check(ros2(ros_env, 'node', 'list'), '/cli_test_node\n')
     check(ros2(ros_env, 'node', 'list', '-c'), '1\n')
+    # The daemon's node is hidden, as ros2cli's `_ros2cli_daemon_<domain>_<id>`.
     everything = ros2(ros_env, 'node', 'list', '-a').stdout.splitlines()
-    assert everything[0] == '/_ros2cli_' + everything[0].rsplit('_', 1)[1]
+    assert everything[0].startswith(f'/_ros2cli_daemon_{ros_env["ROS_DOMAIN_ID"]}_')
     assert everything[1:] == ['/cli_test_node']
+    direct = ros2(ros_env, 'node', 'list', '-a', '--no-daemon').stdout.splitlines()
+    assert direct[0] != everything[0] and direct[0].startswith('/_ros2cli_')
+    assert sorted(direct[1:]) == sorted([everything[0], '/cli_test_node'])
     services = [f'    {name}: {kind}' for name, kind in PARAM_SERVICES]
     check(ros2(ros_env, 'node', 'info', '/cli_test_node'), lines(
         '/cli_test_node',

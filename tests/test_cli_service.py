@@ -4,9 +4,7 @@ import time
 
 import pytest
 
-from support import cli_test_node_argv, rerun_once_for_discovery, ros2
-
-pytestmark = rerun_once_for_discovery()
+from support import cli_test_node_argv, ros2
 
 PARAM_SERVICES = [
     ('/cli_test_node/describe_parameters', 'rcl_interfaces/srv/DescribeParameters'),

@@ -5,9 +5,7 @@ import time
 
 import pytest
 
-from support import rerun_once_for_discovery, ros2
-
-pytestmark = rerun_once_for_discovery()
+from support import ros2
 
 PARAM_SERVICES = ['describe_parameters', 'get_parameter_types', 'get_parameters',
                   'get_type_description', 'list_parameters', 'set_parameters',

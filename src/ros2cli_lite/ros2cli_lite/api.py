@@ -54,7 +54,7 @@ def add_graph_verb(verbs: Any, name: str, func: Callable, help_text: str,
                         'to find a named entity)')
     parser.add_argument('-s', '--use-sim-time', action='store_true', help=argparse.SUPPRESS)
     parser.add_argument('--no-daemon', action='store_true',
-                        help='Do not spawn nor use an already running daemon (always the case)')
+                        help='Do not spawn nor use an already running daemon')
     parser.set_defaults(_main=func)
     return parser
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ros2cli_lite.api import add_graph_verb, full_node_name, is_hidden, is_hidden_node
+from ros2cli_lite.api import add_graph_verb, is_hidden
 
 DUPLICATE_WARNING = ('WARNING: Be aware that there are nodes in the graph that share an exact '
                      'name, which can have unintended side effects.')
@@ -29,24 +29,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                    'services, and actions as well')
 
 
-def node_names(node, include_hidden: bool) -> list[tuple[str, str, str]]:
-    """(full name, name, namespace) of every node, sorted by full name."""
-    result = []
-    for name, namespace in node.get_node_names_and_namespaces():
-        if include_hidden or not is_hidden_node(name):
-            result.append((full_node_name(name, namespace), name, namespace))
-    return sorted(result)
-
-
 def list_verb(args: argparse.Namespace) -> int:
-    from ros2cli_lite.api import cli_node, wait_for_graph
-    with cli_node() as node:
-        wait_for_graph(node)
-        names = node_names(node, args.all)
+    from ros2cli_lite.graph import graph_source
+    with graph_source(not args.no_daemon) as source:
+        full = source.graph().node_names(args.all)
     if args.count_nodes:
-        print(len(names))
+        print(len(full))
         return 0
-    full = [n[0] for n in names]
     if len(set(full)) != len(full):
         print(DUPLICATE_WARNING, file=sys.stderr)
     for name in full:
@@ -61,37 +50,30 @@ def _section(title: str, entries: list[tuple[str, list[str]]], include_hidden: b
     print('\n'.join(lines))
 
 
-def info_verb(args: argparse.Namespace) -> int | str:
-    from rclpy.action.graph import (
-        get_action_client_names_and_types_by_node,
-        get_action_server_names_and_types_by_node,
-    )
+def _known(graph, name: str) -> bool:
+    """The node is listed and its endpoints have arrived (they come after its name)."""
+    info = graph.node(name)
+    return info is not None and bool(info.publishers or info.service_servers)
 
-    from ros2cli_lite.api import cli_node, wait_for_graph
-    with cli_node() as node:
-        def matches():
-            return [n for n in node_names(node, True) if n[0] == args.node_name]
-        wait_for_graph(node, ready=lambda: bool(matches()))
-        found = matches()
-        if not found:
-            return f"Unable to find node '{args.node_name}'"
-        if len(found) > 1:
-            print(f'There are {len(found)} nodes in the graph with the exact name '
-                  f'"{args.node_name}". You are seeing information about only one of them.',
-                  file=sys.stderr)
-        _, name, namespace = found[0]
-        hidden = args.include_hidden
-        print(args.node_name)
-        _section('Subscribers', node.get_subscriber_names_and_types_by_node(name, namespace),
-                 hidden)
-        _section('Publishers', node.get_publisher_names_and_types_by_node(name, namespace),
-                 hidden)
-        _section('Service Servers', node.get_service_names_and_types_by_node(name, namespace),
-                 hidden)
-        _section('Service Clients', node.get_client_names_and_types_by_node(name, namespace),
-                 hidden)
-        _section('Action Servers',
-                 get_action_server_names_and_types_by_node(node, name, namespace), hidden)
-        _section('Action Clients',
-                 get_action_client_names_and_types_by_node(node, name, namespace), hidden)
+
+def info_verb(args: argparse.Namespace) -> int | str:
+    from ros2cli_lite.graph import graph_source
+    with graph_source(not args.no_daemon) as source:
+        graph = source.graph(detail=True, ready=lambda g: _known(g, args.node_name))
+    count = graph.node_names(True).count(args.node_name)
+    info = graph.node(args.node_name)
+    if not count or info is None:
+        return f"Unable to find node '{args.node_name}'"
+    if count > 1:
+        print(f'There are {count} nodes in the graph with the exact name '
+              f'"{args.node_name}". You are seeing information about only one of them.',
+              file=sys.stderr)
+    hidden = args.include_hidden
+    print(args.node_name)
+    _section('Subscribers', info.subscribers, hidden)
+    _section('Publishers', info.publishers, hidden)
+    _section('Service Servers', info.service_servers, hidden)
+    _section('Service Clients', info.service_clients, hidden)
+    _section('Action Servers', info.action_servers, hidden)
+    _section('Action Clients', info.action_clients, hidden)
     return 0

@@ -50,18 +50,17 @@ def absolute(name: str | None) -> str | None:
     return name if name.startswith('/') else '/' + name
 
 
-def _nodes(node, include_hidden: bool) -> list[str]:
-    from ros2cli_lite.command.node import node_names
-    return [n[0] for n in node_names(node, include_hidden)]
-
-
-def _find_node(node, args: argparse.Namespace) -> str | None:
-    from ros2cli_lite.api import wait_for_graph
+def _find_node(args: argparse.Namespace) -> str | None:
+    """The node's full name once the graph lists it, None when it does not appear in time."""
+    from ros2cli_lite.graph import graph_source
     target = absolute(args.node_name)
     timeout = getattr(args, 'timeout', None)
-    wait_for_graph(node, ready=lambda: target in _nodes(node, args.include_hidden_nodes),
-                   settle=0.1, bound=None if timeout is None else max(4.0, float(timeout)))
-    return target if target in _nodes(node, args.include_hidden_nodes) else None
+    hidden = args.include_hidden_nodes
+    with graph_source(not args.no_daemon) as source:
+        graph = source.graph(ready=lambda g: target in g.node_names(hidden),
+                             bound=None if timeout is None or args.no_daemon
+                             else max(1.0, float(timeout)))
+    return target if target in graph.node_names(hidden) else None
 
 
 def _call(node, srv_type, service: str, request, timeout: float = 5.0):
@@ -78,30 +77,36 @@ def _call(node, srv_type, service: str, request, timeout: float = 5.0):
 
 
 def list_verb(args: argparse.Namespace) -> int | str:
+    from ros2cli_lite.graph import graph_source
+    if args.node_name:
+        target = _find_node(args)
+        if target is None:
+            return 'Node not found'
+        targets = [target]
+        # The node may be listed before its parameter services have been discovered.
+        with graph_source(not args.no_daemon) as source:
+            source.graph(ready=lambda g: f'{target}/list_parameters' in dict(g.services(True)))
+    else:
+        with graph_source(not args.no_daemon) as source:
+            graph = source.graph()
+        services = dict(graph.services(True))
+        targets = [name for name in graph.node_names(args.include_hidden_nodes)
+                   if f'{name}/list_parameters' in services]
+    if targets:
+        _list_parameters(args, sorted(set(targets)))
+    return 0
+
+
+def _list_parameters(args: argparse.Namespace, targets: list[str]) -> None:
+    """Ask each node for its parameters directly (the daemon never calls a node)."""
     from rcl_interfaces.srv import DescribeParameters, ListParameters
 
-    from ros2cli_lite.api import cli_node, wait_for_graph
+    from ros2cli_lite.api import cli_node
     with cli_node() as node:
-        if args.node_name:
-            target = _find_node(node, args)
-            if target is None:
-                return 'Node not found'
-            targets = [target]
-        else:
-            wait_for_graph(node)
-            targets = _nodes(node, args.include_hidden_nodes)
-        services = dict(node.get_service_names_and_types())
-        for target in sorted(targets):
-            service = f'{target}/list_parameters'
-            if args.node_name:
-                wait_for_graph(node, ready=lambda s=service: s in dict(
-                    node.get_service_names_and_types()), settle=0.0)
-                services = dict(node.get_service_names_and_types())
-            if service not in services:
-                continue
+        for target in targets:
             request = ListParameters.Request()
             request.prefixes = list(args.param_prefixes)
-            response = _call(node, ListParameters, service, request)
+            response = _call(node, ListParameters, f'{target}/list_parameters', request)
             names = sorted(response.result.names)
             if not args.node_name:
                 print(f'{target}:')
@@ -113,7 +118,6 @@ def list_verb(args: argparse.Namespace) -> int | str:
                          for d in described.descriptors}
             for name in names:
                 print(f'  {name} (type: {types[name]})' if args.param_type else f'  {name}')
-    return 0
 
 
 LABELS = {
@@ -130,10 +134,10 @@ def get_verb(args: argparse.Namespace) -> int | str:
     from rcl_interfaces.srv import GetParameters
 
     from ros2cli_lite.api import cli_node
+    target = _find_node(args)
+    if target is None:
+        return 'Node not found'
     with cli_node() as node:
-        target = _find_node(node, args)
-        if target is None:
-            return 'Node not found'
         response = _call(node, GetParameters, f'{target}/get_parameters',
                          GetParameters.Request(names=[args.parameter_name]))
     if not response.values:
@@ -193,10 +197,10 @@ def set_verb(args: argparse.Namespace) -> int | str:
     low, high = INTEGER_RANGES['int64']
     if value.type == 2 and not low <= value.integer_value <= high:
         return f'Value {args.value} does not fit a 64-bit integer parameter [{low}, {high}]'
+    target = _find_node(args)
+    if target is None:
+        return 'Node not found'
     with cli_node() as node:
-        target = _find_node(node, args)
-        if target is None:
-            return 'Node not found'
         request = SetParameters.Request(
             parameters=[Parameter(name=args.parameter_name, value=value)])
         response = _call(node, SetParameters, f'{target}/set_parameters', request)
@@ -213,10 +217,10 @@ def describe_verb(args: argparse.Namespace) -> int | str:
     from rcl_interfaces.srv import DescribeParameters
 
     from ros2cli_lite.api import cli_node
+    target = _find_node(args)
+    if target is None:
+        return 'Node not found'
     with cli_node() as node:
-        target = _find_node(node, args)
-        if target is None:
-            return 'Node not found'
         response = _call(node, DescribeParameters, f'{target}/describe_parameters',
                          DescribeParameters.Request(names=args.parameter_names))
     for descriptor in response.descriptors:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import time
 
-from ros2cli_lite.api import CliError, add_graph_verb, is_hidden
+from ros2cli_lite.api import CliError, add_graph_verb
 
 HIDDEN = '--include-hidden-services'
 
@@ -54,16 +54,14 @@ def _include_hidden(args: argparse.Namespace) -> bool:
     return bool(args.include_hidden_services or args.include_hidden_services_verb)
 
 
-def services(node, include_hidden: bool) -> list[tuple[str, list[str]]]:
-    return [(name, types) for name, types in node.get_service_names_and_types()
-            if include_hidden or not is_hidden(name)]
+def _graph(args: argparse.Namespace, ready=None):
+    from ros2cli_lite.graph import graph_source
+    with graph_source(not args.no_daemon) as source:
+        return source.graph(ready=ready)
 
 
 def list_verb(args: argparse.Namespace) -> int:
-    from ros2cli_lite.api import cli_node, wait_for_graph
-    with cli_node() as node:
-        wait_for_graph(node)
-        found = services(node, _include_hidden(args))
+    found = _graph(args).services(_include_hidden(args))
     if args.count_services:
         print(len(found))
         return 0
@@ -72,18 +70,15 @@ def list_verb(args: argparse.Namespace) -> int:
     return 0
 
 
-def _lookup(args: argparse.Namespace) -> list[str] | None:
-    from ros2cli_lite.api import cli_node, wait_for_graph
+def _lookup(args: argparse.Namespace):
+    """(types or None, graph) of the named service, waiting a little for it to appear."""
     hidden = _include_hidden(args)
-    with cli_node() as node:
-        def types():
-            return dict(services(node, hidden)).get(args.service_name)
-        wait_for_graph(node, ready=lambda: types() is not None, settle=0.2)
-        return types()
+    graph = _graph(args, ready=lambda g: args.service_name in dict(g.services(hidden)))
+    return dict(graph.services(hidden)).get(args.service_name), graph
 
 
 def type_verb(args: argparse.Namespace) -> int:
-    found = _lookup(args)
+    found, _ = _lookup(args)
     if found is None:
         return 1
     for service_type in found:
@@ -92,11 +87,8 @@ def type_verb(args: argparse.Namespace) -> int:
 
 
 def find_verb(args: argparse.Namespace) -> int:
-    from ros2cli_lite.api import cli_node, wait_for_graph
-    with cli_node() as node:
-        wait_for_graph(node)
-        names = [name for name, types in services(node, _include_hidden(args))
-                 if args.service_type in types]
+    names = [name for name, types in _graph(args).services(_include_hidden(args))
+             if args.service_type in types]
     if args.count_services:
         print(len(names))
     else:
@@ -106,18 +98,13 @@ def find_verb(args: argparse.Namespace) -> int:
 
 
 def info_verb(args: argparse.Namespace) -> int | str:
-    from ros2cli_lite.api import cli_node, wait_for_graph
-    hidden = _include_hidden(args)
-    with cli_node() as node:
-        def types():
-            return dict(services(node, hidden)).get(args.service_name)
-        wait_for_graph(node, ready=lambda: types() is not None)
-        found = types()
-        if found is None:
-            return f"Unknown service '{args.service_name}'"
-        print(f'Type: {found[0] if len(found) == 1 else found}')
-        print(f'Clients count: {node.count_clients(args.service_name)}')
-        print(f'Services count: {node.count_services(args.service_name)}')
+    found, graph = _lookup(args)
+    if found is None:
+        return f"Unknown service '{args.service_name}'"
+    servers, clients = graph.service_counts(args.service_name)
+    print(f'Type: {found[0] if len(found) == 1 else found}')
+    print(f'Clients count: {clients}')
+    print(f'Services count: {servers}')
     return 0
 
 

@@ -89,26 +89,29 @@ def _plural(count: int, word: str) -> str:
     return f'{count} {word}{"s" if count > 1 else ""}'
 
 
+def _graph(args: argparse.Namespace, ready=None):
+    from ros2cli_lite.graph import graph_source
+    with graph_source(not args.no_daemon) as source:
+        return source.graph(ready=ready)
+
+
 def list_verb(args: argparse.Namespace) -> int:
-    from ros2cli_lite.api import cli_node, wait_for_graph
-    with cli_node() as node:
-        wait_for_graph(node)
-        found = topics(node, _include_hidden(args))
-        if args.count_topics:
-            print(len(found))
-        elif args.verbose:
-            for title, count, word in (('Published topics:', node.count_publishers, 'publisher'),
-                                       ('Subscribed topics:', node.count_subscribers,
-                                        'subscriber')):
-                print(title)
-                for name, types in found:
-                    n = count(name)
-                    if n:
-                        print(f' * {name} [{", ".join(types)}] {_plural(n, word)}')
-                print()
-        else:
+    graph = _graph(args)
+    found = graph.topics(_include_hidden(args))
+    if args.count_topics:
+        print(len(found))
+    elif args.verbose:
+        for title, index, word in (('Published topics:', 0, 'publisher'),
+                                   ('Subscribed topics:', 1, 'subscriber')):
+            print(title)
             for name, types in found:
-                print(f'{name} [{", ".join(types)}]' if args.show_types else name)
+                n = graph.topic_counts(name)[index]
+                if n:
+                    print(f' * {name} [{", ".join(types)}] {_plural(n, word)}')
+            print()
+    else:
+        for name, types in found:
+            print(f'{name} [{", ".join(types)}]' if args.show_types else name)
     return 0
 
 
@@ -122,9 +125,9 @@ def _lookup(node, name: str, include_hidden: bool, settle: float = 0.2) -> list[
 
 
 def type_verb(args: argparse.Namespace) -> int:
-    from ros2cli_lite.api import cli_node
-    with cli_node() as node:
-        found = _lookup(node, args.topic_name, _include_hidden(args))
+    hidden = _include_hidden(args)
+    graph = _graph(args, ready=lambda g: args.topic_name in dict(g.topics(hidden)))
+    found = dict(graph.topics(hidden)).get(args.topic_name)
     if found is None:
         return 1
     for topic_type in found:
@@ -133,21 +136,22 @@ def type_verb(args: argparse.Namespace) -> int:
 
 
 def info_verb(args: argparse.Namespace) -> int | str:
-    from ros2cli_lite.api import cli_node
+    from ros2cli_lite.graph import graph_source
     end = '\n\n' if args.verbose else '\n'
-    with cli_node() as node:
-        found = _lookup(node, args.topic_name, True, settle=0.4)
+    with graph_source(not args.no_daemon) as source:
+        graph = source.graph(ready=lambda g: args.topic_name in dict(g.topics(True)))
+        found = dict(graph.topics(True)).get(args.topic_name)
         if found is None:
             return f"Unknown topic '{args.topic_name}'"
-        print(f'Type: {found[0] if len(found) == 1 else found}', end=end)
-        print(f'Publisher count: {node.count_publishers(args.topic_name)}', end=end)
-        if args.verbose:
-            for info in node.get_publishers_info_by_topic(args.topic_name):
-                print(info, end=end)
-        print(f'Subscription count: {node.count_subscribers(args.topic_name)}', end=end)
-        if args.verbose:
-            for info in node.get_subscriptions_info_by_topic(args.topic_name):
-                print(info, end=end)
+        publishers, subscribers = source.endpoints(args.topic_name) if args.verbose else ([], [])
+    publisher_count, subscriber_count = graph.topic_counts(args.topic_name)
+    print(f'Type: {found[0] if len(found) == 1 else found}', end=end)
+    print(f'Publisher count: {publisher_count}', end=end)
+    for text in publishers:
+        print(text, end=end)
+    print(f'Subscription count: {subscriber_count}', end=end)
+    for text in subscribers:
+        print(text, end=end)
     return 0
 
 

@@ -1,0 +1,99 @@
+"""What the daemon and its clients agree on: where the socket is, its version, the wire format.
+
+One request per connection: the client sends one JSON object on one line, the daemon answers
+with one JSON object on one line and closes. Imports nothing heavy (the client side of every
+graph verb loads this module).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import stat
+from pathlib import Path
+from typing import Any
+
+# Bump when requests or answers change shape; the source files' stamps are added to it so a
+# daemon running older code (an edited workspace) is replaced too.
+PROTOCOL = 1
+_SOURCES = ('protocol.py', 'server.py', '../graph.py')
+# The settings that decide which DDS graph a process sees: a daemon serves exactly one set.
+SETTINGS = ('ROS_DOMAIN_ID', 'ROS_AUTOMATIC_DISCOVERY_RANGE', 'ROS_STATIC_PEERS',
+            'RMW_IMPLEMENTATION', 'ROS_LOCALHOST_ONLY')
+MAX_MESSAGE = 64 * 1024 * 1024
+
+
+class ProtocolError(Exception):
+    """The other side sent something that is not one JSON object line."""
+
+
+def version() -> str:
+    here = Path(__file__).parent
+    stamps = []
+    for name in _SOURCES:
+        try:
+            info = (here / name).stat()
+        except OSError:
+            continue
+        stamps.append(f'{info.st_mtime_ns}:{info.st_size}')
+    digest = hashlib.sha1(';'.join(stamps).encode()).hexdigest()[:12]
+    return f'{PROTOCOL}-{digest}'
+
+
+def settings(env: dict[str, str] | os._Environ[str] | None = None) -> dict[str, str]:
+    """The graph-deciding settings of `env` (default: this process), unset ones as ''."""
+    env = os.environ if env is None else env
+    return {name: env.get(name, '').strip() for name in SETTINGS}
+
+
+def runtime_dir() -> Path:
+    """The per-user directory of the daemons' sockets, created 0700 and checked to be ours.
+
+    $XDG_RUNTIME_DIR (a 0700 tmpfs of the user's session) when set, else /tmp/ros2cli_lite-UID.
+    A directory that another user owns or that others can enter is refused: its socket could
+    be someone else's.
+    """
+    xdg = os.environ.get('XDG_RUNTIME_DIR', '')
+    if xdg and os.path.isdir(xdg):
+        path = Path(xdg) / 'ros2cli_lite'
+    else:
+        path = Path('/tmp') / f'ros2cli_lite-{os.getuid()}'
+    try:
+        path.mkdir(mode=0o700)
+    except FileExistsError:
+        pass
+    info = path.lstat()
+    if not stat.S_ISDIR(info.st_mode) or info.st_uid != os.getuid() \
+            or stat.S_IMODE(info.st_mode) & 0o077:
+        raise PermissionError(f'{path} must be a directory of user {os.getuid()} with mode '
+                              f'0700 (it is {stat.S_IMODE(info.st_mode):04o}, owner '
+                              f'{info.st_uid}); remove it to let ros2 recreate it')
+    return path
+
+
+def socket_path(env: dict[str, str] | None = None) -> Path:
+    """The socket of the daemon for `env`'s settings: one file per distinct set of settings."""
+    values = settings(env)
+    digest = hashlib.sha1(json.dumps(values, sort_keys=True).encode()).hexdigest()[:16]
+    domain = values['ROS_DOMAIN_ID'] or '0'
+    return runtime_dir() / f'daemon-{domain}-{digest}.sock'
+
+
+def lock_path(sock: Path) -> Path:
+    """The daemon holds an exclusive flock on this file for as long as it runs."""
+    return sock.with_suffix('.lock')
+
+
+def encode(message: dict[str, Any]) -> bytes:
+    return json.dumps(message, separators=(',', ':')).encode() + b'\n'
+
+
+def decode(line: bytes) -> dict[str, Any]:
+    try:
+        message = json.loads(line)
+    except ValueError as error:
+        raise ProtocolError(f'not JSON: {error}') from None
+    if not isinstance(message, dict):
+        raise ProtocolError('not a JSON object')
+    return message

@@ -1,0 +1,210 @@
+"""The daemon process: `python -m ros2cli_lite.daemon.server` (started by the client).
+
+One hidden rclpy node keeps the DDS graph cache warm; a threaded Unix-socket server answers
+each request from it (see protocol.py). The first answer waits until discovery has settled;
+later ones read the live cache. Exits when stopped, on SIGTERM/SIGINT, or after IDLE_EXIT
+seconds without a request.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import os
+import signal
+import socketserver
+import sys
+import threading
+import time
+from pathlib import Path
+from typing import Any
+
+from ros2cli_lite.daemon import protocol
+
+IDLE_EXIT = 2 * 60 * 60.0      # as ros2cli's daemon: two hours without a request
+READY_BOUND = 15.0             # a request waits at most this long for the first settling
+SNAPSHOT_REUSE = 0.05          # concurrent requests within 50 ms share one snapshot
+HEALTH_PERIOD = 2.0            # how often the participant checks that it still sees itself
+
+
+class GraphCache:
+    """The daemon's node, rebuilt when its participant is lost; snapshots built under a lock."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._ready = threading.Event()
+        self._context: Any = None
+        self._node: Any = None
+        self._reused: dict[bool, tuple[float, dict[str, Any]]] = {}
+
+    def start(self) -> None:
+        """Create the node and let discovery settle before the first answer (as the CLI did)."""
+        from ros2cli_lite import api
+        name = f'_ros2cli_daemon_{os.environ.get("ROS_DOMAIN_ID", "0") or "0"}_{os.getpid()}'
+        context, node = api._make_node(name)
+        context, node = api._meet_graph(context, node, name)
+        api.wait_for_graph(node, bound=3.0)
+        with self._lock:
+            self._context, self._node = context, node
+            self._reused.clear()
+        self._ready.set()
+
+    def stop(self) -> None:
+        import rclpy
+        with self._lock:
+            if self._node is not None:
+                self._node.destroy_node()
+                rclpy.try_shutdown(context=self._context)
+                self._node = None
+
+    def _rebuild(self, why: str) -> None:
+        print(f'rebuilding the participant: {why}', file=sys.stderr, flush=True)
+        self._ready.clear()
+        self.stop()
+        self.start()
+
+    def healthy(self) -> bool:
+        """Whether the node still sees itself in the graph (a lost participant would not)."""
+        with self._lock:
+            if self._node is None:
+                return True
+            try:
+                return (self._node.get_name(), self._node.get_namespace()) in \
+                    self._node.get_node_names_and_namespaces()
+            except Exception:
+                return False
+
+    def watch(self, stopping: threading.Event) -> None:
+        """Rebuild the participant when it no longer sees itself (checked twice, to be sure)."""
+        misses = 0
+        while not stopping.wait(HEALTH_PERIOD):
+            if not self._ready.is_set():
+                continue
+            misses = 0 if self.healthy() else misses + 1
+            if misses >= 2:
+                self._rebuild('the node no longer sees itself in the graph')
+                misses = 0
+
+    def _with_node(self, query: Any) -> Any:
+        if not self._ready.wait(READY_BOUND):
+            raise TimeoutError('discovery did not settle in time')
+        with self._lock:
+            return query(self._node)
+
+    def snapshot(self, detail: bool) -> dict[str, Any]:
+        from ros2cli_lite.graph import snapshot
+
+        def build(node: Any) -> dict[str, Any]:
+            now = time.monotonic()
+            reused = self._reused.get(detail)
+            if reused is not None and now - reused[0] < SNAPSHOT_REUSE:
+                return reused[1]
+            data = snapshot(node, detail)
+            self._reused[detail] = (time.monotonic(), data)
+            return data
+        return self._with_node(build)
+
+    def endpoints(self, topic: str) -> tuple[list[str], list[str]]:
+        from ros2cli_lite.graph import endpoint_texts
+        return self._with_node(lambda node: endpoint_texts(node, topic))
+
+
+class _Handler(socketserver.StreamRequestHandler):
+    server: DaemonServer
+
+    def handle(self) -> None:
+        self.connection.settimeout(5.0)
+        try:
+            line = self.rfile.readline(protocol.MAX_MESSAGE)
+            reply = self.server.answer(protocol.decode(line))
+        except (protocol.ProtocolError, OSError) as error:
+            reply = {'ok': False, 'error': f'bad request: {error}'}
+        except Exception as error:  # answer with the reason rather than a dropped connection
+            reply = {'ok': False, 'error': f'{type(error).__name__}: {error}'}
+        reply['version'] = self.server.version
+        self.connection.settimeout(30.0)
+        try:
+            self.wfile.write(protocol.encode(reply))
+        except OSError:
+            pass  # the client gave up
+
+
+class DaemonServer(socketserver.ThreadingUnixStreamServer):
+    daemon_threads = True
+    request_queue_size = 64
+
+    def __init__(self, path: Path, cache: GraphCache) -> None:
+        self.version = protocol.version()
+        self.cache = cache
+        self.last_request = time.monotonic()
+        old_umask = os.umask(0o177)  # the socket is created 0600: only its user may connect
+        try:
+            super().__init__(str(path), _Handler)
+        finally:
+            os.umask(old_umask)
+        os.chmod(path, 0o600)
+
+    def answer(self, request: dict[str, Any]) -> dict[str, Any]:
+        self.last_request = time.monotonic()
+        op = request.get('op')
+        if op == 'hello':
+            return {'ok': True, 'pid': os.getpid(), 'settings': protocol.settings()}
+        if op == 'stop':
+            threading.Thread(target=self.shutdown, daemon=True).start()
+            return {'ok': True}
+        if request.get('version') != self.version:
+            return {'ok': False, 'error': 'version'}
+        if op == 'graph':
+            return {'ok': True, 'graph': self.cache.snapshot(bool(request.get('detail')))}
+        if op == 'endpoints':
+            publishers, subscribers = self.cache.endpoints(str(request.get('topic', '')))
+            return {'ok': True, 'publishers': publishers, 'subscribers': subscribers}
+        return {'ok': False, 'error': f'unknown request {op!r}'}
+
+
+def _exit_when_idle(server: DaemonServer, stopping: threading.Event) -> None:
+    while not stopping.wait(10.0):
+        if time.monotonic() - server.last_request > IDLE_EXIT:
+            server.shutdown()
+            return
+
+
+def main() -> int:
+    path = protocol.socket_path()
+    lock = open(protocol.lock_path(path), 'a')  # held (and locked) for the process's life
+    try:
+        fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        return 0  # another daemon serves these settings already
+    # We hold the lock, so a socket file left here belongs to a dead daemon: replace it.
+    try:
+        path.unlink()
+    except FileNotFoundError:
+        pass
+    cache = GraphCache()
+    server = DaemonServer(path, cache)
+    stopping = threading.Event()
+
+    def on_signal(signum: int, frame: Any) -> None:
+        threading.Thread(target=server.shutdown, daemon=True).start()
+    signal.signal(signal.SIGTERM, on_signal)
+    signal.signal(signal.SIGINT, on_signal)
+    threading.Thread(target=cache.start, daemon=True).start()
+    threading.Thread(target=cache.watch, args=(stopping,), daemon=True).start()
+    threading.Thread(target=_exit_when_idle, args=(server, stopping), daemon=True).start()
+    print(f'daemon {os.getpid()} serving {path} ({protocol.settings()})', file=sys.stderr,
+          flush=True)
+    try:
+        server.serve_forever(poll_interval=0.5)
+    finally:
+        stopping.set()
+        try:  # still ours: no other daemon binds this path while we hold the lock
+            path.unlink()
+        except OSError:
+            pass
+        server.server_close()
+        cache.stop()
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

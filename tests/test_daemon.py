@@ -1,0 +1,138 @@
+"""The `ros2` graph daemon: complete, fresh and private answers, and its own lifecycle."""
+
+import os
+import signal
+import stat
+import subprocess
+import sys
+import threading
+import time
+
+import pytest
+from ros2cli_lite.daemon import client, protocol
+
+from support import cli_test_node_argv, leased_domain, ros2, ros_environment, stop_daemon
+
+
+@pytest.fixture
+def node(launch):
+    process = launch(argv=cli_test_node_argv())
+    process.wait_for_output('^READY$')
+    return process
+
+
+def daemon_pid(env):
+    """The pid of the daemon serving `env`'s settings (None when none answers)."""
+    path = protocol.socket_path(env)
+    try:
+        return client._exchange(path, {'op': 'hello'}, 5.0)['pid']
+    except client.NotRunning:
+        return None
+
+
+def wait_for(predicate, timeout, what):
+    deadline = time.monotonic() + timeout
+    while not predicate():
+        assert time.monotonic() < deadline, f'timed out after {timeout} s waiting for {what}'
+        time.sleep(0.02)
+
+
+def test_start_status_stop_and_a_private_socket(ros_env):
+    assert ros2(ros_env, 'daemon', 'status').stdout == 'The daemon is not running\n'
+    assert ros2(ros_env, 'daemon', 'stop').stdout == 'The daemon is not running\n'
+    assert ros2(ros_env, 'daemon', 'start').stdout == 'The daemon has been started\n'
+    assert ros2(ros_env, 'daemon', 'start').stdout == 'The daemon is already running\n'
+    assert ros2(ros_env, 'daemon', 'status').stdout == 'The daemon is running\n'
+    path = protocol.socket_path(ros_env)
+    assert stat.S_ISSOCK(path.stat().st_mode)
+    assert stat.S_IMODE(path.stat().st_mode) == 0o600
+    assert stat.S_IMODE(path.parent.stat().st_mode) == 0o700
+    assert path.parent.stat().st_uid == os.getuid()
+    assert ros2(ros_env, 'daemon', 'stop').stdout == 'The daemon has been stopped\n'
+    assert not path.exists()
+    assert ros2(ros_env, 'daemon', 'status').stdout == 'The daemon is not running\n'
+
+
+def test_client_answers_without_rclpy(ros_env, node):
+    code = ('import sys\nfrom ros2cli_lite.cli import main\nmain(["node", "list"])\n'
+            'print("rclpy" in sys.modules)')
+    result = subprocess.run([sys.executable, '-c', code], env=ros_env, capture_output=True,
+                            text=True, timeout=60)
+    assert result.stdout == '/cli_test_node\nFalse\n', result.stderr
+
+
+def test_every_answer_complete_also_when_concurrent(ros_env, launch, node):
+    turtlesim = launch('turtlesim', 'turtlesim_node', '--headless')
+    turtlesim.wait_for_output(r'Spawning turtle \[turtle1\]')
+    nodes = '/cli_test_node\n/turtlesim\n'
+    assert ros2(ros_env, 'node', 'list').stdout == nodes  # starts the daemon
+    services = ros2(ros_env, 'service', 'list').stdout
+    assert '/turtle1/set_pen\n' in services and '/flag\n' in services
+    answers = [ros2(ros_env, 'node', 'list').stdout for _ in range(15)]
+    answers += [ros2(ros_env, 'service', 'list').stdout for _ in range(15)]
+    assert answers == [nodes] * 15 + [services] * 15
+
+    results: list[subprocess.CompletedProcess[str]] = []
+    threads = [threading.Thread(target=lambda: results.append(ros2(ros_env, 'service', 'list')))
+               for _ in range(20)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join(timeout=60)
+    assert [(r.stdout, r.stderr, r.returncode) for r in results] == [(services, '', 0)] * 20
+
+
+def test_sigkilled_node_is_gone_within_3_s_and_clean_exit_at_once(ros_env, launch, node):
+    other = launch('turtlesim', 'turtlesim_node', '--headless')
+    other.wait_for_output(r'Spawning turtle \[turtle1\]')
+    assert ros2(ros_env, 'node', 'list').stdout == '/cli_test_node\n/turtlesim\n'
+    os.killpg(other.popen.pid, signal.SIGKILL)  # not reaped yet: a zombie counts as dead too
+    killed = time.monotonic()
+    while ros2(ros_env, 'node', 'list').stdout != '/cli_test_node\n':
+        assert time.monotonic() - killed < 3.0, 'a SIGKILLed node was still listed after 3 s'
+    assert ros2(ros_env, 'service', 'list').stdout.count('/turtle1/') == 0
+    assert '/turtle1/pose' not in ros2(ros_env, 'topic', 'list').stdout
+    node.stop()
+    assert ros2(ros_env, 'node', 'list').stdout == ''
+
+
+def test_daemon_killed_is_replaced_and_a_crash_mid_call_is_one_line(ros_env, node):
+    assert ros2(ros_env, 'node', 'list').stdout == '/cli_test_node\n'
+    first = daemon_pid(ros_env)
+    os.kill(first, signal.SIGKILL)
+    wait_for(lambda: daemon_pid(ros_env) is None, 5, 'the daemon to die')
+    assert protocol.socket_path(ros_env).exists()  # a stale socket is left behind
+    assert ros2(ros_env, 'node', 'list').stdout == '/cli_test_node\n'
+    second = daemon_pid(ros_env)
+    assert second not in (None, first)
+
+    # A daemon that dies while a command waits for its answer.
+    os.kill(second, signal.SIGSTOP)
+    try:
+        call = subprocess.Popen(['ros2', 'node', 'list'], env=ros_env, text=True,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        time.sleep(0.5)  # the command is connected (the kernel accepted it) and waits
+        os.kill(second, signal.SIGKILL)
+    finally:
+        os.kill(second, signal.SIGCONT)
+    out, err = call.communicate(timeout=30)
+    assert (out, call.returncode) == ('', 1)
+    assert err.startswith('The ros2 daemon stopped while answering') and err.count('\n') == 1
+    assert ros2(ros_env, 'node', 'list').stdout == '/cli_test_node\n'
+
+
+def test_other_settings_get_their_own_daemon(ros_env, node):
+    with leased_domain() as other_domain:
+        other = ros_environment(other_domain)
+        quiet = dict(ros_env, ROS_AUTOMATIC_DISCOVERY_RANGE='OFF')
+        try:
+            assert ros2(ros_env, 'node', 'list').stdout == '/cli_test_node\n'
+            assert ros2(other, 'node', 'list').stdout == ''
+            assert ros2(quiet, 'node', 'list').stdout == ''
+            paths = {protocol.socket_path(env) for env in (ros_env, other, quiet)}
+            pids = {daemon_pid(env) for env in (ros_env, other, quiet)}
+            assert len(paths) == 3 and len(pids) == 3 and None not in pids
+        finally:
+            stop_daemon(other)
+            stop_daemon(quiet)
+    assert ros2(ros_env, 'node', 'list', '--no-daemon').stdout == '/cli_test_node\n'
