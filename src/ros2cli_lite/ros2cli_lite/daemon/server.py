@@ -24,6 +24,11 @@ IDLE_EXIT = 2 * 60 * 60.0      # as ros2cli's daemon: two hours without a reques
 READY_BOUND = 15.0             # a request waits at most this long for the first settling
 SNAPSHOT_REUSE = 0.05          # concurrent requests within 50 ms share one snapshot
 HEALTH_PERIOD = 2.0            # how often the participant checks that it still sees itself
+# Every Fast DDS participant re-announces itself every 3 s (its default announcement period)
+# to all 32 localhost participant ports; a new participant's first announcements are now and
+# then not heard (measured here: 0-3.3 s until an existing node was known). So a fresh daemon
+# listens for one whole period before its first answer: then it has heard every participant.
+FIRST_LISTEN = 3.3
 
 
 class GraphCache:
@@ -40,9 +45,10 @@ class GraphCache:
         """Create the node and let discovery settle before the first answer (as the CLI did)."""
         from ros2cli_lite import api
         name = f'_ros2cli_daemon_{os.environ.get("ROS_DOMAIN_ID", "0") or "0"}_{os.getpid()}'
+        created = time.monotonic()
         context, node = api._make_node(name)
-        context, node = api._meet_graph(context, node, name)
-        api.wait_for_graph(node, bound=3.0)
+        time.sleep(max(0.0, created + FIRST_LISTEN - time.monotonic()))
+        api.wait_for_graph(node, bound=2.0)  # and until every node's endpoints have arrived
         with self._lock:
             self._context, self._node = context, node
             self._reused.clear()
