@@ -22,8 +22,7 @@ import time
 from collections import Counter
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 NamesAndTypes = list[tuple[str, list[str]]]
 ENTITY_KINDS = ('subscribers', 'publishers', 'service_servers', 'service_clients',
@@ -40,8 +39,7 @@ def _full_name(name: str, namespace: str) -> str:
     return namespace.rstrip('/') + '/' + name
 
 
-@dataclass(frozen=True)
-class NodeInfo:
+class NodeInfo(NamedTuple):
     """What one node offers: each kind is [(name, [types])], sorted by name, hidden included."""
 
     name: str

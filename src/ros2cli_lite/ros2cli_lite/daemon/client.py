@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import fcntl
 import socket
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -104,6 +103,7 @@ def start(path: Path | None = None) -> bool:
         fcntl.flock(spawn_lock, fcntl.LOCK_EX)
         if is_running(path):
             return False
+        import subprocess
         with open(_log_path(path), 'wb') as log:
             process = subprocess.Popen(
                 [sys.executable, '-m', 'ros2cli_lite.daemon.server'], cwd='/',

@@ -7,12 +7,12 @@ graph verb loads this module).
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import stat
 from pathlib import Path
 from typing import Any
+from zlib import adler32, crc32
 
 # Bump when requests or answers change shape; the source files' stamps are added to it so a
 # daemon running older code (an edited workspace) is replaced too.
@@ -37,8 +37,14 @@ def version() -> str:
         except OSError:
             continue
         stamps.append(f'{info.st_mtime_ns}:{info.st_size}')
-    digest = hashlib.sha1(';'.join(stamps).encode()).hexdigest()[:12]
-    return f'{PROTOCOL}-{digest}'
+    return f'{PROTOCOL}-{_digest(";".join(stamps))}'
+
+
+def _digest(text: str) -> str:
+    """64 bits of checksum: enough to tell a handful of settings apart, and no hashlib (whose
+    OpenSSL load costs more than the rest of the client's imports)."""
+    data = text.encode()
+    return f'{crc32(data):08x}{adler32(data):08x}'
 
 
 def settings(env: dict[str, str] | os._Environ[str] | None = None) -> dict[str, str]:
@@ -75,7 +81,7 @@ def runtime_dir() -> Path:
 def socket_path(env: dict[str, str] | None = None) -> Path:
     """The socket of the daemon for `env`'s settings: one file per distinct set of settings."""
     values = settings(env)
-    digest = hashlib.sha1(json.dumps(values, sort_keys=True).encode()).hexdigest()[:16]
+    digest = _digest(json.dumps(values, sort_keys=True))
     domain = values['ROS_DOMAIN_ID'] or '0'
     return runtime_dir() / f'daemon-{domain}-{digest}.sock'
 
