@@ -79,6 +79,8 @@ def test_topic_list_type_info(ros_env, node):
         ' * /rosout [rcl_interfaces/msg/Log] 2 publishers', '',
         'Subscribed topics:', ' * /heard [std_msgs/msg/String] 1 subscriber', ''))
     check(ros2(ros_env, 'topic', 'type', '/pose'), 'turtlesim/msg/Pose\n')
+    check(ros2(ros_env, 'topic', 'find', 'turtlesim/msg/Pose'), '/pose\n')
+    check(ros2(ros_env, 'topic', 'find', '-c', 'rcl_interfaces/msg/Log'), '1\n')
     check(ros2(ros_env, 'topic', 'type', '--spin-time', '1', '/nope'), '', '', 1)
     check(ros2(ros_env, 'topic', 'info', '/pose'),
           'Type: turtlesim/msg/Pose\nPublisher count: 1\nSubscription count: 0\n')

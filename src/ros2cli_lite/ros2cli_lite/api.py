@@ -50,8 +50,9 @@ def add_graph_verb(verbs: Any, name: str, func: Callable, help_text: str,
         parser.add_argument(hidden_flag, action='store_true', dest=hidden_dest,
                             help=argparse.SUPPRESS)
     parser.add_argument('--spin-time', type=float, default=None,
-                        help='Longest wait for discovery in seconds (default: 2 to list, 4 '
-                        'to find a named entity)')
+                        help='Longest wait in seconds for a named entity to appear (default: '
+                        '1 with the daemon; with --no-daemon the discovery time: 2 to list, 4 '
+                        'to find)')
     parser.add_argument('-s', '--use-sim-time', action='store_true', help=argparse.SUPPRESS)
     parser.add_argument('--no-daemon', action='store_true',
                         help='Do not spawn nor use an already running daemon')

@@ -1,4 +1,4 @@
-"""ros2 topic: list, type, info, echo, pub, hz."""
+"""ros2 topic: list, type, find, info, echo, pub, hz."""
 
 from __future__ import annotations
 
@@ -29,6 +29,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                    help='List full details about each topic')
     p = verb('type', type_verb, 'Print a topic\'s type')
     p.add_argument('topic_name', help="Name of the ROS topic to get type (e.g. '/chatter')")
+    p = verb('find', find_verb, 'Output a list of available topics of a given type')
+    p.add_argument('topic_type', help="Name of the ROS topic type to filter for (e.g. "
+                   "'std_msg/msg/String')")
+    p.add_argument('-c', '--count-topics', action='store_true',
+                   help='Only display the number of topics discovered')
     p = verb('info', info_verb, 'Print information about a topic')
     p.add_argument('topic_name', help="Name of the ROS topic to get info (e.g. '/chatter')")
     p.add_argument('-v', '--verbose', action='store_true',
@@ -132,6 +137,17 @@ def type_verb(args: argparse.Namespace) -> int:
         return 1
     for topic_type in found:
         print(topic_type)
+    return 0
+
+
+def find_verb(args: argparse.Namespace) -> int:
+    names = [name for name, types in _graph(args).topics(_include_hidden(args))
+             if args.topic_type in types]
+    if args.count_topics:
+        print(len(names))
+    else:
+        for name in names:
+            print(name)
     return 0
 
 
