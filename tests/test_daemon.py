@@ -1,5 +1,6 @@
 """The `ros2` graph daemon: complete, fresh and private answers, and its own lifecycle."""
 
+import json
 import os
 import signal
 import stat
@@ -79,6 +80,15 @@ def test_every_answer_complete_also_when_concurrent(ros_env, launch, node):
     answers = [ros2(ros_env, 'node', 'list').stdout for _ in range(10)]
     answers += [ros2(ros_env, 'service', 'list').stdout for _ in range(10)]
     assert answers == [nodes] * 10 + [services] * 10
+
+    # The same graph for other code, as plain data, actions included.
+    code = ('import json\nfrom ros2cli_lite.graph import get_graph\ngraph = get_graph()\n'
+            'print(json.dumps([graph.actions(), graph.node("/turtlesim").action_servers, '
+            'graph.node_names(), graph.topic_counts("/turtle1/pose")]))')
+    result = subprocess.run([sys.executable, '-c', code], env=ros_env, capture_output=True,
+                            text=True, timeout=60)
+    rotate = ['/turtle1/rotate_absolute', ['turtlesim/action/RotateAbsolute']]
+    assert json.loads(result.stdout) == [[rotate], [rotate], nodes.split(), [1, 0]], result
 
     results: list[subprocess.CompletedProcess[str]] = []
     threads = [threading.Thread(target=lambda: results.append(ros2(ros_env, 'service', 'list')))

@@ -32,6 +32,15 @@ def is_hidden_node(name: str) -> bool:
     return name.startswith('_')
 
 
+def print_names(names: list[str], count_only: bool) -> None:
+    """One name a line, or with `count_only` (the `-c` of list/find verbs) just how many."""
+    if count_only:
+        print(len(names))
+    else:
+        for name in names:
+            print(name)
+
+
 def full_node_name(name: str, namespace: str) -> str:
     return namespace.rstrip('/') + '/' + name
 

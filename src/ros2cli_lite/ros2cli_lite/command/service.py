@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import time
 
-from ros2cli_lite.api import CliError, add_graph_verb
+from ros2cli_lite.api import CliError, add_graph_verb, print_names
 
 HIDDEN = '--include-hidden-services'
 
@@ -87,13 +87,8 @@ def type_verb(args: argparse.Namespace) -> int:
 
 
 def find_verb(args: argparse.Namespace) -> int:
-    names = [name for name, types in _graph(args).services(_include_hidden(args))
-             if args.service_type in types]
-    if args.count_services:
-        print(len(names))
-    else:
-        for name in names:
-            print(name)
+    print_names([name for name, types in _graph(args).services(_include_hidden(args))
+                 if args.service_type in types], args.count_services)
     return 0
 
 

@@ -8,7 +8,7 @@ import math
 import sys
 import time
 
-from ros2cli_lite.api import add_graph_verb, is_hidden
+from ros2cli_lite.api import add_graph_verb, is_hidden, print_names
 
 HIDDEN = '--include-hidden-topics'
 
@@ -141,13 +141,8 @@ def type_verb(args: argparse.Namespace) -> int:
 
 
 def find_verb(args: argparse.Namespace) -> int:
-    names = [name for name, types in _graph(args).topics(_include_hidden(args))
-             if args.topic_type in types]
-    if args.count_topics:
-        print(len(names))
-    else:
-        for name in names:
-            print(name)
+    print_names([name for name, types in _graph(args).topics(_include_hidden(args))
+                 if args.topic_type in types], args.count_topics)
     return 0
 
 
