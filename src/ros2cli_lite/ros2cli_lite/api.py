@@ -84,6 +84,12 @@ def cli_node(name: str | None = None, discover: bool = True) -> Iterator[Any]:
             context, node = _meet_graph(context, node, node_name)
         yield node
     finally:
+        # Shut the executor of spin_once down while its context lives: left to the garbage
+        # collector, it would destroy its guard condition after the context and print
+        # "Exception ignored in: Executor.__del__ ... InvalidHandle" on stderr.
+        executor = getattr(node, '_cli_executor', None)
+        if executor is not None:
+            executor.shutdown(timeout_sec=1.0)
         node.destroy_node()
         rclpy.try_shutdown(context=context)
 
