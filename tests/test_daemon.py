@@ -62,6 +62,16 @@ def test_start_status_stop_and_a_private_socket(ros_env):
     assert says(ros_env, 'daemon', 'status') == 'The daemon is not running\n'
 
 
+def test_a_socket_directory_others_can_enter_is_refused(ros_env, tmp_path):
+    shared = tmp_path / 'ros2cli_lite'
+    shared.mkdir()
+    shared.chmod(0o755)
+    result = ros2(dict(ros_env, XDG_RUNTIME_DIR=str(tmp_path)), 'node', 'list')
+    assert (result.stdout, result.returncode) == ('', 1)
+    assert result.stderr.startswith('Cannot use the ros2 daemon: ') and '0755' in result.stderr
+    assert result.stderr.count('\n') == 1 and not list(shared.iterdir())
+
+
 def test_client_answers_without_rclpy(ros_env, node):
     code = ('import sys\nfrom ros2cli_lite.cli import main\nmain(["node", "list"])\n'
             'print("rclpy" in sys.modules)')

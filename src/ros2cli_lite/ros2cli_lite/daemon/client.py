@@ -58,14 +58,17 @@ def _died(error: OSError | None) -> CliError:
                     'to restart it')
 
 
-def ask(message: dict[str, Any], timeout: float = 5.0) -> dict[str, Any]:
-    """One exchange with the running daemon; NotRunning when there is none."""
-    return _exchange(protocol.socket_path(), {**message, 'version': protocol.version()}, timeout)
+def socket_path() -> Path:
+    """This shell's daemon socket; CliError (one line) when its directory is not private."""
+    try:
+        return protocol.socket_path()
+    except OSError as error:
+        raise CliError(f'Cannot use the ros2 daemon: {error}') from None
 
 
 def request(message: dict[str, Any]) -> dict[str, Any]:
     """Ask the daemon, starting it (or replacing one of another version) as needed."""
-    path = protocol.socket_path()
+    path = socket_path()
     message = {**message, 'version': protocol.version()}
     for _ in range(3):
         try:
@@ -88,7 +91,7 @@ def _log_path(path: Path) -> Path:
 
 def is_running(path: Path | None = None) -> bool:
     try:
-        return bool(_exchange(path or protocol.socket_path(), {'op': 'hello'}, 5.0).get('ok'))
+        return bool(_exchange(path or socket_path(), {'op': 'hello'}, 5.0).get('ok'))
     except NotRunning:
         return False
 
@@ -98,7 +101,7 @@ def start(path: Path | None = None) -> bool:
 
     Concurrent callers queue on a spawn lock, so 20 commands at once start one daemon.
     """
-    path = path or protocol.socket_path()
+    path = path or socket_path()
     with open(path.with_suffix('.spawn'), 'a') as spawn_lock:
         fcntl.flock(spawn_lock, fcntl.LOCK_EX)
         if is_running(path):
@@ -135,7 +138,7 @@ def _locked(path: Path) -> bool:
 
 def stop(path: Path | None = None, timeout: float = 10.0) -> bool:
     """Stop the daemon of these settings; True when one was running. Waits until it is gone."""
-    path = path or protocol.socket_path()
+    path = path or socket_path()
     try:
         reply = _exchange(path, {'op': 'stop'}, 5.0)
     except NotRunning:
