@@ -262,9 +262,10 @@ def _endpoint_infos(node: Any, raw: str) -> tuple[list[Any], list[Any]]:
 def snapshot(node: Any, detail: bool = False) -> dict[str, Any]:
     """The graph as `node` sees it now, without the participants of dead local processes.
 
-    DDS-level endpoints (raw names `rt/...` for topics, `rq/...Request` and `rr/...Reply` for
-    services) carry the GUIDs whose prefixes tell which participant, hence which process, owns
-    them; nodes are tied to participants through the node names on their endpoints.
+    DDS-level endpoints (raw names `rt/...` for topics, `rq/...Request` for services) carry the
+    GUIDs whose prefixes tell which participant, hence which process, owns them; nodes are tied
+    to participants through the node names on their endpoints. A node without any endpoint
+    cannot be tied to a participant and is always kept.
     """
     from rclpy.action.graph import (
         get_action_client_names_and_types_by_node,
