@@ -3,6 +3,7 @@
 import re
 import signal
 import subprocess
+import threading
 import time
 
 import pytest
@@ -112,15 +113,38 @@ def test_topic_echo(ros_env, node):
           'Could not determine the type for the passed topic\n', 1)
 
 
-def test_topic_echo_streams_until_interrupted(ros_env, node):
-    echo = subprocess.Popen(['ros2', 'topic', 'echo', '/pose'], env=ros_env, text=True,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+def interrupt_when(env, argv, enough, timeout=30.0):
+    """Run `argv` until its output so far satisfies `enough` (bounded), then Ctrl-C it.
+
+    Waiting for the output rather than a fixed time keeps the test meaningful on a loaded
+    machine, where starting and discovering can take seconds. Returns (stdout, stderr).
+    """
+    process = subprocess.Popen(argv, env=env, text=True, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, start_new_session=True)
+    lines: list[str] = []
+
+    def read() -> None:
+        for line in process.stdout:
+            lines.append(line)
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
     try:
-        time.sleep(3)
-        echo.send_signal(signal.SIGINT)
-        out, err = echo.communicate(timeout=10)
+        deadline = time.monotonic() + timeout
+        while not enough(''.join(lines)) and time.monotonic() < deadline \
+                and process.poll() is None:
+            time.sleep(0.05)
+        process.send_signal(signal.SIGINT)
+        process.wait(timeout=10)
+        reader.join(timeout=10)
+        return ''.join(lines), process.stderr.read()
     finally:
-        echo.kill()
+        process.kill()
+        process.wait()
+
+
+def test_topic_echo_streams_until_interrupted(ros_env, node):
+    out, err = interrupt_when(ros_env, ['ros2', 'topic', 'echo', '/pose'],
+                              lambda out: out.count('---\n') >= 5)
     assert 'Traceback' not in err
     assert out.count('---\n') >= 5
     assert out.startswith('x: 1.5\n')
@@ -151,14 +175,8 @@ def test_topic_pub_times_and_bad_values(ros_env, node):
 
 
 def test_topic_hz(ros_env, node):
-    hz = subprocess.Popen(['ros2', 'topic', 'hz', '/pose'], env=ros_env, text=True,
-                          stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    try:
-        time.sleep(4)
-        hz.send_signal(signal.SIGINT)
-        out, err = hz.communicate(timeout=10)
-    finally:
-        hz.kill()
+    out, err = interrupt_when(ros_env, ['ros2', 'topic', 'hz', '/pose'],
+                              lambda out: out.count('average rate: ') >= 2)
     blocks = re.findall(r'average rate: (\d+\.\d{3})\n\tmin: \d+\.\d{3}s max: \d+\.\d{3}s '
                         r'std dev: \d+\.\d{5}s window: (\d+)\n', out)
     assert blocks and len(blocks) * 2 == len(out.splitlines()), out
