@@ -73,8 +73,9 @@ def main(argv: list[str] | None = None) -> int:
     say(f'stopping after {options.seconds:g} s' if options.seconds else 'Ctrl-C to stop')
     command = [ros2, 'launch', 'my_robot_controller', 'turtle_demo.launch.py',
                f'canvas_png:={canvas}', f'headless:={str(headless).lower()}',
-               f'seconds:={options.seconds or 0:g}',
-               f'controller_args:={shlex.join(options.controller_args)}']
+               f'seconds:={options.seconds or 0:g}']
+    if options.controller_args:  # `name:=` with nothing after it is malformed for ros2 launch
+        command.append(f'controller_args:={shlex.join(options.controller_args)}')
     say(' '.join(shlex.quote(word) for word in ['ros2', *command[1:]]))
     os.execv(ros2, command)
     return 1  # not reached
