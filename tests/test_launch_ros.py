@@ -116,16 +116,27 @@ def test_mimic_tutorial_launch_file_runs_unchanged(launch, ros_env, probe, launc
     assert 'Traceback' not in out
 
 
-def test_substitutions_tutorial_runs_unchanged(launch, ros_env, probe, tmp_path):
+@pytest.mark.parametrize(('kind', 'spawn_x'), [('py', 2.0), ('yaml', 5.0)])
+def test_substitutions_tutorial_runs_unchanged(launch, ros_env, probe, tmp_path, kind, spawn_x):
     prefix = tutorial_package(tmp_path / 'install', 'launch_tutorial',
-                              ['example_main_launch.py', 'example_substitutions_launch.py'])
+                              [f'example_main_launch.{kind}',
+                               f'example_substitutions_launch.{kind}'])
     env = headless(ros_env, prefix)
-    run = launch(argv=['ros2', 'launch', 'launch_tutorial', 'example_main_launch.py'], env=env)
+    shown = ros2(env, 'launch', 'launch_tutorial', f'example_substitutions_launch.{kind}',
+                 '--show-args')
+    assert shown.stdout == (  # the transcript the tutorial shows
+        "Arguments (pass arguments as '<name>:=<value>'):\n"
+        "\n    'turtlesim_ns':\n        no description given\n        (default: 'turtlesim1')\n"
+        "\n    'use_provided_red':\n        no description given\n        (default: 'False')\n"
+        "\n    'new_background_r':\n        no description given\n        (default: '200')\n"
+    ), shown.stdout + shown.stderr
+    run = launch(argv=['ros2', 'launch', 'launch_tutorial', f'example_main_launch.{kind}'],
+                 env=env)
     wait_for_nodes(probe, {'/turtlesim2/sim'})
     poses = probe.collect(Pose, '/turtlesim2/turtle2/pose', turtle_qos())
     with Background(probe):
         wait_until(lambda: bool(poses), 30, 'the turtle spawned by `ros2 service call`')
-    assert abs(poses[-1].x - 2.0) < 0.01 and abs(poses[-1].y - 2.0) < 0.01, poses[-1]
+    assert abs(poses[-1].x - spawn_x) < 0.01 and abs(poses[-1].y - 2.0) < 0.01, poses[-1]
     # 120 at once, then 200 after the 2 s timer: new_background_r == 200 and use_provided_red
     deadline = time.monotonic() + 30
     while get_parameter(probe, '/turtlesim2/sim', 'background_r') != 200:
@@ -187,3 +198,31 @@ def test_node_namespaces_parameters_remaps_and_respawn(launch, ros_env, probe, t
     run.wait_for_output(r'^\[INFO\] \[turtlesim_node-2\]: process started with pid '
                         rf'\[(?!{plain_pid}\])\d+\]$', timeout=10)
     stop(run)
+
+
+def test_event_handlers_tutorial_runs_unchanged(launch, ros_env, probe, tmp_path):
+    prefix = tutorial_package(tmp_path / 'install', 'launch_tutorial',
+                              ['example_event_handlers_launch.py'])
+    env = headless(ros_env, prefix)
+    env['USER'] = 'learner'
+    run = launch(argv=['ros2', 'launch', 'launch_tutorial', 'example_event_handlers_launch.py',
+                       'turtlesim_ns:=turtlesim3', 'use_provided_red:=True',
+                       'new_background_r:=200'], env=env)
+    run.wait_for_output(r'^\[INFO\] \[launch\.user\]: Spawn request says "requester: making '
+                        r'request: turtlesim\.srv\.Spawn_Request\(x=2\.0, y=2\.0, theta=0\.2',
+                        timeout=30)
+    run.wait_for_output(r'^\[INFO\] \[launch\.user\]: Spawn finished$', timeout=30)
+    wait_for_nodes(probe, {'/turtlesim3/sim'})
+    deadline = time.monotonic() + 30
+    while get_parameter(probe, '/turtlesim3/sim', 'background_r') != 200:
+        assert time.monotonic() < deadline, run.output
+        probe.spin_for(0.2)
+    # Closing the window ends turtlesim: the launch logs it and shuts itself down.
+    pid = int(re.search(r'^\[INFO\] \[turtlesim_node-1\]: process started with pid \[(\d+)\]',
+                        run.output, re.MULTILINE).group(1))
+    os.kill(pid, signal.SIGINT)
+    assert run.wait(timeout=30) == 0, run.output
+    lines = run.output.splitlines()
+    assert '[INFO] [launch.user]: Turtlesim started, spawning turtle' in lines
+    assert '[INFO] [launch.user]: learner closed the turtlesim window' in lines
+    assert '[INFO] [launch.user]: Launch was asked to shutdown: Window closed' in lines

@@ -8,7 +8,6 @@ substitution.
 
 from __future__ import annotations
 
-import shlex
 import xml.etree.ElementTree as ElementTree
 from collections.abc import Callable
 from typing import Any
@@ -307,7 +306,51 @@ def _split_args(entity: _Entity, name: str) -> list[list[Substitution]] | None:
     value = entity.get(name)
     if value is None:
         return None
-    return [parse_substitutions(word) for word in shlex.split(str(value))]
+    return split_command_line(parse_substitutions(value))
+
+
+def split_command_line(parts: list[Substitution]) -> list[list[Substitution]]:
+    """Words of a command line, shell-like (quotes, spaces), substitutions kept whole."""
+    words: list[list[Substitution]] = []
+    word: list[Substitution] = []
+    text = ''
+    quote = ''
+    started = False
+
+    def flush_text() -> None:
+        nonlocal text
+        if text:
+            word.append(TextSubstitution(text=text))
+            text = ''
+
+    for part in parts:
+        if not isinstance(part, TextSubstitution):
+            flush_text()
+            word.append(part)
+            started = True
+            continue
+        for char in part.text:
+            if quote:
+                if char == quote:
+                    quote = ''
+                else:
+                    text += char
+            elif char in '\'"':
+                quote, started = char, True
+            elif char.isspace():
+                flush_text()
+                if started:
+                    words.append(word)
+                word, started = [], False
+            else:
+                text += char
+                started = True
+    if quote:
+        raise FrontendError(f'unterminated quote in command line: {quote}')
+    flush_text()
+    if started:
+        words.append(word)
+    return words
 
 
 def _executable(entity: _Entity) -> Action:

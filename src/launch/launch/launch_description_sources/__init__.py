@@ -21,8 +21,11 @@ if TYPE_CHECKING:
 
 class InvalidLaunchFileError(Exception):
     def __init__(self, extension: str, error: BaseException) -> None:
-        detail = f'{error}' if not isinstance(error, SyntaxError) else \
-            f'{error.msg} ({os.path.basename(error.filename or "")}, line {error.lineno})'
+        detail = f'{error}'
+        if isinstance(error, SyntaxError):
+            detail = f'{error.msg} ({os.path.basename(error.filename or "")}, line {error.lineno})'
+        elif isinstance(error, ModuleNotFoundError) and (error.name or '').startswith('launch'):
+            detail += ', which this launch does not provide (see docs/launch.md)'
         super().__init__(f'Caught exception when trying to load file of format [{extension}]: '
                          f'{detail}')
 
