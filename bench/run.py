@@ -13,6 +13,7 @@ import time
 
 import cpu
 import latency
+import launch_time
 import report
 import roundtrip
 import scale
@@ -25,6 +26,7 @@ SUITE = {
     'scale': lambda s, quick: scale.run(s, counts=(1, 50) if quick else scale.COUNTS),
     'cpu': lambda s, quick: cpu.run(s, duration=8.0 if quick else cpu.DURATION_S),
     'setup': lambda s, quick: setup_time.run(s),
+    'launch': lambda s, quick: launch_time.run(s, repeats=2 if quick else launch_time.REPEATS),
 }
 
 
