@@ -50,9 +50,14 @@ def tutorial_package(root: Path, name: str, launch_files: list[str],
     return root
 
 
-def wait_for_nodes(probe, names: set[str], timeout: float = 30.0) -> None:
-    probe.spin_until(lambda: names <= set(probe.node.get_fully_qualified_node_names()),
-                     timeout, f'nodes {sorted(names)}')
+def wait_for_nodes(probe, names: set[str], run, timeout: float = 30.0) -> None:
+    """Wait until the probe discovers the nodes; fail with the launch's output."""
+    try:
+        probe.spin_until(lambda: names <= set(probe.node.get_fully_qualified_node_names()),
+                         timeout, f'nodes {sorted(names)}')
+    except AssertionError as error:
+        raise AssertionError(f'{error}; seen: {probe.node.get_fully_qualified_node_names()}; '
+                             f'launch output:\n{run.output}') from None
 
 
 def get_parameter(probe, node: str, name: str):
@@ -75,7 +80,7 @@ def test_multisim_starts_two_turtlesims_listed_by_ros2_node_list(launch, ros_env
     env = headless(ros_env)
     started = time.monotonic()
     run = launch(argv=['ros2', 'launch', 'turtlesim', 'multisim.launch.py'], env=env)
-    wait_for_nodes(probe, {'/turtlesim1/turtlesim', '/turtlesim2/turtlesim'})
+    wait_for_nodes(probe, {'/turtlesim1/turtlesim', '/turtlesim2/turtlesim'}, run)
     print(f'multisim: both nodes discoverable {time.monotonic() - started:.2f} s after '
           '`ros2 launch`')
     listed = ros2(env, 'node', 'list')
@@ -99,7 +104,7 @@ def test_multisim_starts_two_turtlesims_listed_by_ros2_node_list(launch, ros_env
                                          'turtlesim_mimic_launch.yaml'])
 def test_mimic_tutorial_launch_file_runs_unchanged(launch, ros_env, probe, launch_file):
     run = launch(argv=['ros2', 'launch', str(DATA / launch_file)], env=headless(ros_env))
-    wait_for_nodes(probe, {'/turtlesim1/sim', '/turtlesim2/sim', '/mimic'})
+    wait_for_nodes(probe, {'/turtlesim1/sim', '/turtlesim2/sim', '/mimic'}, run)
     # The tutorial's check: drive turtlesim1, and turtlesim2's turtle follows through mimic.
     poses = probe.collect(Pose, '/turtlesim2/turtle1/pose', turtle_qos())
     publisher = probe.node.create_publisher(Twist, '/turtlesim1/turtle1/cmd_vel', 10)
@@ -132,7 +137,7 @@ def test_substitutions_tutorial_runs_unchanged(launch, ros_env, probe, tmp_path,
     ), shown.stdout + shown.stderr
     run = launch(argv=['ros2', 'launch', 'launch_tutorial', f'example_main_launch.{kind}'],
                  env=env)
-    wait_for_nodes(probe, {'/turtlesim2/sim'})
+    wait_for_nodes(probe, {'/turtlesim2/sim'}, run)
     poses = probe.collect(Pose, '/turtlesim2/turtle2/pose', turtle_qos())
     with Background(probe):
         wait_until(lambda: bool(poses), 30, 'the turtle spawned by `ros2 service call`')
@@ -181,7 +186,7 @@ def test_node_namespaces_parameters_remaps_and_respawn(launch, ros_env, probe, t
             ])
         '''))
     run = launch(argv=['ros2', 'launch', str(launch_file)], env=headless(ros_env))
-    wait_for_nodes(probe, {'/outer/inner/sim', '/plain'})
+    wait_for_nodes(probe, {'/outer/inner/sim', '/plain'}, run)
     assert get_parameter(probe, '/outer/inner/sim', 'background_r') == 10
     assert get_parameter(probe, '/outer/inner/sim', 'background_g') == 50
     assert get_parameter(probe, '/outer/inner/sim', 'background_b') == 30
@@ -212,7 +217,7 @@ def test_event_handlers_tutorial_runs_unchanged(launch, ros_env, probe, tmp_path
                         r'request: turtlesim\.srv\.Spawn_Request\(x=2\.0, y=2\.0, theta=0\.2',
                         timeout=30)
     run.wait_for_output(r'^\[INFO\] \[launch\.user\]: Spawn finished$', timeout=30)
-    wait_for_nodes(probe, {'/turtlesim3/sim'})
+    wait_for_nodes(probe, {'/turtlesim3/sim'}, run)
     deadline = time.monotonic() + 30
     while get_parameter(probe, '/turtlesim3/sim', 'background_r') != 200:
         assert time.monotonic() < deadline, run.output

@@ -154,24 +154,28 @@ class LocalSubstitution(Substitution):
         return self.description or f'LocalVar({self.expression!r})'
 
 
-class ThisLaunchFileDir(Substitution):
+class _LaunchFileLocal(Substitution):
+    """A local the include of a launch file sets (its path or its directory)."""
+
+    key = ''
+
+    def perform(self, context: LaunchContext) -> str:
+        value = context.get_locals_as_dict().get(self.key)
+        if value is None:
+            raise SubstitutionFailure(f'{type(self).__name__} used outside of a launch file')
+        return value
+
+
+class ThisLaunchFileDir(_LaunchFileLocal):
     """The directory of the launch file being loaded."""
 
-    def perform(self, context: LaunchContext) -> str:
-        value = context.get_locals_as_dict().get('current_launch_file_directory')
-        if value is None:
-            raise SubstitutionFailure('ThisLaunchFileDir used outside of a launch file')
-        return value
+    key = 'current_launch_file_directory'
 
 
-class ThisLaunchFile(Substitution):
+class ThisLaunchFile(_LaunchFileLocal):
     """The path of the launch file being loaded."""
 
-    def perform(self, context: LaunchContext) -> str:
-        value = context.get_locals_as_dict().get('current_launch_file_path')
-        if value is None:
-            raise SubstitutionFailure('ThisLaunchFile used outside of a launch file')
-        return value
+    key = 'current_launch_file_path'
 
 
 class Command(Substitution):
