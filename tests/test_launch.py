@@ -269,6 +269,14 @@ def test_bad_launch_files_give_one_clear_line(ros_env, tmp_path):
         def generate_launch_description():
             return LaunchDescription([])
         ''')
+    unknown_keyword = write(tmp_path / 'keyword.launch.py', '''
+        from launch import LaunchDescription
+        from launch_ros.actions import Node
+
+        def generate_launch_description():
+            return LaunchDescription([Node(package='turtlesim', executable='turtlesim_node',
+                                           composable=True)])
+        ''')
     unknown_tag = write(tmp_path / 'tag.launch.xml', '<launch><rosparam file="x"/></launch>\n')
     cases = {
         (str(syntax),): 'Caught exception when trying to load file of format [py]: '
@@ -276,6 +284,8 @@ def test_bad_launch_files_give_one_clear_line(ros_env, tmp_path):
         (str(unknown_package),): "\"package 'no_such_pkg' not found, searching: [",
         (str(unsupported),): 'launch_ros.actions.ComposableNodeContainer is not supported '
                              'by this launch (see docs/launch.md)',
+        (str(unknown_keyword),): "Node: argument 'composable' is not supported by this "
+                                 'launch (see docs/launch.md)',
         (str(unknown_tag),): 'Caught exception when trying to load file of format [xml]: '
                              '<rosparam> is not supported by this launch (see docs/launch.md)',
         ('no_such_pkg', 'x.launch.py'): "Package 'no_such_pkg' not found: \"package "

@@ -12,7 +12,11 @@ if TYPE_CHECKING:
 
 
 class Action(LaunchDescriptionEntity):
-    def __init__(self, *, condition: Condition | None = None) -> None:
+    def __init__(self, *, condition: Condition | None = None, **unsupported: object) -> None:
+        if unsupported:
+            # Names what an upstream launch file asked for that this launch does not have.
+            raise TypeError(f"{type(self).__name__}: argument '{sorted(unsupported)[0]}' is "
+                            'not supported by this launch (see docs/launch.md)')
         self.__condition = condition
 
     @property
