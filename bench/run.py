@@ -14,6 +14,7 @@ import time
 import cpu
 import daemon
 import latency
+import launch_time
 import report
 import roundtrip
 import scale
@@ -27,6 +28,7 @@ SUITE = {
     'cpu': lambda s, quick: cpu.run(s, duration=8.0 if quick else cpu.DURATION_S),
     'setup': lambda s, quick: setup_time.run(s),
     'daemon': lambda s, quick: daemon.run(s, calls=20 if quick else daemon.CALLS),
+    'launch': lambda s, quick: launch_time.run(s, repeats=2 if quick else launch_time.REPEATS),
 }
 
 

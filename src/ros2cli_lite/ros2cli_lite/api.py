@@ -179,9 +179,7 @@ def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: f
         now = time.monotonic()
         snapshot = graph_snapshot(node)
         others = [(n, ns) for n, ns in snapshot[0] if full_node_name(n, ns) != own]
-        complete = bool(others) and all(
-            node.get_publisher_names_and_types_by_node(n, ns)
-            or node.get_service_names_and_types_by_node(n, ns) for n, ns in others)
+        complete = bool(others) and all(_has_endpoints(node, n, ns) for n, ns in others)
         snapshot = (*snapshot, complete)
         if snapshot != last:
             last, changed = snapshot, now
@@ -191,6 +189,16 @@ def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: f
         if now - start >= bound:
             return ok
         time.sleep(0.02)
+
+
+def _has_endpoints(node: Any, name: str, namespace: str) -> bool:
+    """Whether a node's publishers or services are known; False once it has left the graph."""
+    from rclpy._rclpy_pybind11 import NodeNameNonExistentError
+    try:
+        return bool(node.get_publisher_names_and_types_by_node(name, namespace)
+                    or node.get_service_names_and_types_by_node(name, namespace))
+    except NodeNameNonExistentError:  # it left between listing the names and asking for this
+        return False
 
 
 def wait_until(predicate: Callable[[], bool], timeout: float, step: float = 0.02) -> bool:

@@ -1,0 +1,20 @@
+"""Condition: decides at run time whether an action runs."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from launch.launch_context import LaunchContext
+
+
+class Condition:
+    def __init__(self, *, predicate: Callable[[LaunchContext], bool] | None = None) -> None:
+        self._predicate = predicate
+
+    def evaluate(self, context: LaunchContext) -> bool:
+        return bool(self._predicate(context)) if self._predicate is not None else True
+
+    def describe(self) -> str:
+        return type(self).__name__

@@ -1,0 +1,5 @@
+"""SubstitutionFailure: a substitution could not be worked out (missing variable, ...)."""
+
+
+class SubstitutionFailure(RuntimeError):
+    pass

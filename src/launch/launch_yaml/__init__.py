@@ -1,0 +1,1 @@
+"""launch_yaml: upstream's module path for YAML launch files (parsed by launch.frontend)."""
