@@ -1,0 +1,125 @@
+"""`ros2 pkg create` -> `colcon build` -> `colcon test` -> `ros2 run`, in a workspace on ours.
+
+Two packages as the Client-libraries tutorials make them: an ament_python package with a node
+(its generated flake8/pep257 tests run for real, the copyright test is skipped as generated),
+and an ament_cmake interfaces package (Num.msg, Sphere.msg, AddThreeInts.srv) whose
+ament_lint_auto tests (lint_cmake, xmllint) run through this workspace's ament_lint packages.
+"""
+
+from __future__ import annotations
+
+import re
+import subprocess
+from pathlib import Path
+
+import pytest
+
+CMAKE_INTERFACES = '''\
+find_package(geometry_msgs REQUIRED)
+find_package(rosidl_default_generators REQUIRED)
+
+rosidl_generate_interfaces(${PROJECT_NAME}
+  "msg/Num.msg"
+  "msg/Sphere.msg"
+  "srv/AddThreeInts.srv"
+  DEPENDENCIES geometry_msgs # Add packages that above messages depend on, in this case \
+geometry_msgs for Sphere.msg
+)
+'''
+XML_INTERFACES = '''\
+  <depend>geometry_msgs</depend>
+  <buildtool_depend>rosidl_default_generators</buildtool_depend>
+  <exec_depend>rosidl_default_runtime</exec_depend>
+  <member_of_group>rosidl_interface_packages</member_of_group>
+
+'''
+
+
+def run(args: list[str], cwd: Path, env: dict[str, str], timeout: float = 240.0
+        ) -> subprocess.CompletedProcess[str]:
+    result = subprocess.run(args, cwd=cwd, env=env, capture_output=True, text=True,
+                            timeout=timeout, stdin=subprocess.DEVNULL)
+    assert result.returncode == 0, f'{args} failed:\n{result.stdout}\n{result.stderr}'
+    return result
+
+
+def sourced(workspace: Path, env: dict[str, str], command: str) -> list[str]:
+    """`source install/setup.bash && <command>` in bash, as the tutorial does."""
+    return ['bash', '-c', f'source {workspace}/install/setup.bash && {command}']
+
+
+@pytest.fixture(scope='module')
+def workspace(tmp_path_factory) -> Path:
+    from support import leased_domain, ros_environment
+    root = tmp_path_factory.mktemp('ros2_ws')
+    src = root / 'src'
+    src.mkdir()
+    with leased_domain() as domain:
+        env = ros_environment(domain)
+        run(['ros2', 'pkg', 'create', '--build-type', 'ament_python', '--license', 'Apache-2.0',
+             '--node-name', 'my_node', 'my_package', '--dependencies', 'rclpy', 'std_msgs'],
+            src, env)
+        run(['ros2', 'pkg', 'create', '--build-type', 'ament_cmake', '--license', 'Apache-2.0',
+             'tutorial_interfaces'], src, env)
+    interfaces = src / 'tutorial_interfaces'
+    (interfaces / 'msg').mkdir()
+    (interfaces / 'srv').mkdir()
+    (interfaces / 'msg/Num.msg').write_text('int64 num\n')
+    (interfaces / 'msg/Sphere.msg').write_text('geometry_msgs/Point center\nfloat64 radius\n')
+    (interfaces / 'srv/AddThreeInts.srv').write_text(
+        'int64 a\nint64 b\nint64 c\n---\nint64 sum\n')
+    cmake = (interfaces / 'CMakeLists.txt').read_text()
+    (interfaces / 'CMakeLists.txt').write_text(cmake.replace(
+        '\nif(BUILD_TESTING)', '\n' + CMAKE_INTERFACES + '\nif(BUILD_TESTING)'))
+    xml = (interfaces / 'package.xml').read_text()
+    (interfaces / 'package.xml').write_text(xml.replace('  <test_depend>ament_lint_auto',
+                                                        XML_INTERFACES + '  <test_depend>'
+                                                        'ament_lint_auto'))
+    return root
+
+
+def test_build_test_and_run_created_packages(workspace, ros_env):
+    build = run(['colcon', 'build', '--symlink-install'], workspace, ros_env)
+    assert 'Summary: 2 packages finished' in build.stdout, build.stdout
+    tested = run(['colcon', 'test', '--event-handlers', 'console_direct+'], workspace, ros_env)
+    results = run(['colcon', 'test-result', '--all', '--verbose'], workspace, ros_env)
+    summary = re.search(r'Summary: (\d+) tests, (\d+) errors, (\d+) failures, (\d+) skipped',
+                        results.stdout)
+    assert summary, results.stdout
+    tests, errors, failures, skipped = map(int, summary.groups())
+    assert (errors, failures) == (0, 0), results.stdout + tested.stdout
+    # ament_python: copyright (skipped as generated), flake8, pep257; ament_cmake: lint_cmake
+    # and xmllint (copyright and cpplint switched off by the generated CMakeLists.txt).
+    assert skipped == 1 and tests >= 5, results.stdout
+    out = tested.stdout
+    assert re.search(r'test/test_flake8\.py \.', out) and re.search(r'test_pep257\.py \.', out)
+    assert 'lint_cmake' in out and 'xmllint' in out, out
+    assert "File 'package.xml' is valid" in out, out
+
+    hello = run(sourced(workspace, ros_env, 'ros2 run my_package my_node'), workspace, ros_env,
+                timeout=30)
+    assert hello.stdout == 'Hi from my_package.\n'
+    shown = run(sourced(workspace, ros_env,
+                        'ros2 interface show tutorial_interfaces/msg/Sphere'),
+                workspace, ros_env, timeout=30)
+    assert shown.stdout.startswith('geometry_msgs/Point center\n')
+    assert 'float64 radius' in shown.stdout
+    srv = run(sourced(workspace, ros_env, 'ros2 interface show tutorial_interfaces/srv/'
+                                          'AddThreeInts'), workspace, ros_env, timeout=30)
+    assert srv.stdout == 'int64 a\nint64 b\nint64 c\n---\nint64 sum\n'
+
+
+def test_a_lint_error_fails_colcon_test(workspace, ros_env):
+    """The linters really run: a style error in the created node fails its flake8 test."""
+    node = workspace / 'src/my_package/my_package/my_node.py'
+    original = node.read_text()
+    node.write_text(original + 'unused = 1;\n')
+    try:
+        subprocess.run(['colcon', 'test', '--packages-select', 'my_package'], cwd=workspace,
+                       env=ros_env, capture_output=True, text=True, timeout=240)
+        results = subprocess.run(['colcon', 'test-result', '--verbose'], cwd=workspace,
+                                 env=ros_env, capture_output=True, text=True, timeout=60)
+        assert results.returncode != 0
+        assert 'E703 statement ends with a semicolon' in results.stdout, results.stdout
+    finally:
+        node.write_text(original)
