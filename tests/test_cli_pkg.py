@@ -92,8 +92,8 @@ def test_create_ament_python_prints_and_writes_what_jazzy_does(ros_env, tmp_path
 
 def test_create_ament_cmake_with_dependencies(ros_env, tmp_path):
     result = create(ros_env, tmp_path, '--build-type', 'ament_cmake', '--license',
-                    'Apache-2.0', '--node-name', 'my_node', '--dependencies', 'rclcpp',
-                    'std_msgs', 'my_package', *MAINTAINER)
+                    'Apache-2.0', '--node-name', 'my_node', 'my_package', *MAINTAINER,
+                    '--dependencies', 'rclcpp', 'std_msgs')
     assert result.returncode == 0, result.stderr
     assert result.stdout == summary(tmp_path, 'my_package', 'ament_cmake', 'my_node',
                                     "['rclcpp', 'std_msgs']") + (
@@ -162,6 +162,29 @@ def test_create_refuses_an_existing_directory(ros_env, tmp_path):
     assert result.returncode == 1
     assert result.stderr == ('Aborted! The directory already exists: ./taken (remove it, or '
                              'choose a different destination directory or package name)\n')
+
+
+def test_ament_copyright_checks_headers(ros_env, tmp_path):
+    header = (Path(__file__).resolve().parent.parent / 'src/ros2pkg/ros2pkg/templates/'
+              'ament_python/test_flake8.py.in').read_text().split('\n\n')[0]
+    (tmp_path / 'good.py').write_text(header + '\n\nx = 1\n')
+    (tmp_path / 'unknown.py').write_text('# Copyright 2026 Me\n# All rights reserved\nx = 1\n')
+    (tmp_path / 'none.py').write_text('x = 1\n')
+    (tmp_path / 'empty.py').write_text('')
+    import subprocess
+    result = subprocess.run(['ament_copyright', '--xunit-file', str(tmp_path / 'c.xunit.xml')],
+                            cwd=tmp_path, env=ros_env, capture_output=True, text=True,
+                            timeout=30)
+    assert result.returncode == 1
+    assert result.stderr == ('none.py: could not find copyright notice\n'
+                             'unknown.py: copyright=2026 Me, license=<unknown>\n'
+                             '2 errors, checked 4 files\n')
+    assert 'failures="2"' in (tmp_path / 'c.xunit.xml').read_text()
+    (tmp_path / 'none.py').unlink()
+    (tmp_path / 'unknown.py').unlink()
+    ok = subprocess.run(['ament_copyright'], cwd=tmp_path, env=ros_env, capture_output=True,
+                        text=True, timeout=30)
+    assert (ok.returncode, ok.stdout) == (0, 'No problems found, checked 2 files\n')
 
 
 def test_executables_list_prefix_xml(ros_env):

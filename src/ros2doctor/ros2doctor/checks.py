@@ -135,6 +135,11 @@ def report_network() -> list[Report]:
 # middleware: RMW implementation and domain id
 # --------------------------------------------------------------------------------------
 
+def _bad_domain() -> bool:
+    domain = os.environ.get('ROS_DOMAIN_ID', '').strip()
+    return bool(domain) and (not domain.isdigit() or int(domain) > MAX_DOMAIN_ID)
+
+
 def check_middleware() -> Result:
     result = Result()
     wanted = os.environ.get('RMW_IMPLEMENTATION')
@@ -144,13 +149,12 @@ def check_middleware() -> Result:
             result.fail(f"RMW_IMPLEMENTATION is '{wanted}', which is not installed "
                         '(installed here: rmw_fastrtps_cpp).')
     domain = os.environ.get('ROS_DOMAIN_ID', '')
-    if domain.strip():
-        if not domain.strip().isdigit() or int(domain) > MAX_DOMAIN_ID:
-            result.fail(f"ROS_DOMAIN_ID is '{domain}', allowed: an integer in "
-                        f'[0, {MAX_DOMAIN_ID}].')
-        elif int(domain) > SAFE_DOMAIN_ID:
-            result.warn(f'ROS_DOMAIN_ID {int(domain)} is above {SAFE_DOMAIN_ID}: its DDS ports '
-                        'may collide with ephemeral ports; prefer 0 to 101.')
+    if _bad_domain():
+        result.fail(f"ROS_DOMAIN_ID is '{domain}', allowed: an integer in "
+                    f'[0, {MAX_DOMAIN_ID}].')
+    elif domain.strip() and int(domain) > SAFE_DOMAIN_ID:
+        result.warn(f'ROS_DOMAIN_ID {int(domain)} is above {SAFE_DOMAIN_ID}: its DDS ports '
+                    'may collide with ephemeral ports; prefer 0 to 101.')
     return result
 
 
@@ -180,6 +184,9 @@ _graph: Graph | None = None
 
 def graph() -> Graph:
     global _graph
+    if _bad_domain():
+        # Fast DDS ends the whole process when asked for a participant there.
+        raise RuntimeError('ROS_DOMAIN_ID is invalid')
     if _graph is None:
         from ros2cli_lite.api import cli_node, wait_for_graph
         found = Graph()

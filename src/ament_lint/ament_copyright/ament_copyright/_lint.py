@@ -20,7 +20,7 @@ def find_files(paths: Iterable[str], accept, excludes: Iterable[str] = ()) -> li
             subdirs[:] = sorted(d for d in subdirs if d[0] not in '._')
             for name in sorted(names):
                 if accept(name):
-                    found.append(os.path.join(directory, name))
+                    found.append(os.path.normpath(os.path.join(directory, name)))
     return [f for f in found if os.path.normpath(f) not in excluded
             and os.path.basename(f) not in excluded]
 
