@@ -110,16 +110,22 @@ def test_build_test_and_run_created_packages(workspace, ros_env):
 
 
 def test_a_lint_error_fails_colcon_test(workspace, ros_env):
-    """The linters really run: a style error in the created node fails its flake8 test."""
+    """The linters really run: style errors in the created packages fail their tests."""
     node = workspace / 'src/my_package/my_package/my_node.py'
-    original = node.read_text()
-    node.write_text(original + 'unused = 1;\n')
+    cmake = workspace / 'src/tutorial_interfaces/CMakeLists.txt'
+    originals = {path: path.read_text() for path in (node, cmake)}
+    node.write_text(originals[node] + 'unused = 1;\n')
+    # ctest runs the linters on the sources: no rebuild needed to see this line.
+    cmake.write_text(originals[cmake] + 'message(STATUS "x" )\n')
     try:
-        subprocess.run(['colcon', 'test', '--packages-select', 'my_package'], cwd=workspace,
-                       env=ros_env, capture_output=True, text=True, timeout=240)
+        subprocess.run(['colcon', 'test'], cwd=workspace, env=ros_env, capture_output=True,
+                       text=True, timeout=240)
         results = subprocess.run(['colcon', 'test-result', '--verbose'], cwd=workspace,
                                  env=ros_env, capture_output=True, text=True, timeout=60)
         assert results.returncode != 0
         assert 'E703 statement ends with a semicolon' in results.stdout, results.stdout
+        assert 'CMakeLists.txt:' in results.stdout and '[whitespace/mismatch]' in \
+            results.stdout, results.stdout
     finally:
-        node.write_text(original)
+        for path, text in originals.items():
+            path.write_text(text)
