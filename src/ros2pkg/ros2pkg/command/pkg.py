@@ -83,9 +83,9 @@ def create_verb(args: argparse.Namespace) -> int:
     if os.path.exists(package_path):
         raise CliError(f'Aborted! The directory already exists: {package_path} (remove it, '
                        'or choose a different destination directory or package name)')
-    if not os.path.isdir(spec.destination):
+    if os.path.exists(spec.destination) and not os.path.isdir(spec.destination):
         raise CliError(f"Invalid --destination-directory '{spec.destination}': "
-                       'not an existing directory')
+                       'it is a file, not a directory')
     print_summary(spec)
     try:
         create(spec, licenses.get(spec.license))
