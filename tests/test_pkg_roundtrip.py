@@ -10,6 +10,7 @@ build on this machine (the tutorial's Sphere.msg/AddThreeInts.srv build the same
 
 from __future__ import annotations
 
+import os
 import re
 import subprocess
 from pathlib import Path
@@ -123,3 +124,31 @@ def test_a_lint_error_fails_colcon_test(workspace, ros_env):
     finally:
         for path, text in originals.items():
             path.write_text(text)
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason='needs root for a mount namespace')
+def test_missing_linter_programs_are_reported_as_skipped(tmp_path, ros_env):
+    """Without the cppcheck/uncrustify programs, a C++ package's lint tests say so, skipped.
+
+    The programs are hidden inside a private mount namespace (if this machine has them).
+    """
+    src = tmp_path / 'src'
+    src.mkdir()
+    run(['ros2', 'pkg', 'create', '--build-type', 'ament_cmake', '--license', 'Apache-2.0',
+         '--node-name', 'my_node', 'my_cpp'], src, ros_env)
+    hide = ''.join(f'[ -e {path} ] && mount --bind /dev/null {path}; '
+                   for path in ('/usr/bin/cppcheck', '/usr/bin/uncrustify'))
+    built = run(['unshare', '-m', 'bash', '-c',
+                 hide + 'colcon build && colcon test && colcon test-result --all'],
+                tmp_path, ros_env, timeout=240)
+    out = built.stdout
+    assert re.search(r"my_cpp/cppcheck\.xunit\.xml: 1 test, 0 errors, 0 failures, 1 skipped",
+                     out), out
+    assert re.search(r"my_cpp/uncrustify\.xunit\.xml: 1 test, 0 errors, 0 failures, "
+                     r"1 skipped", out), out
+    reason = (tmp_path / 'build/my_cpp/test_results/my_cpp/uncrustify.xunit.xml').read_text()
+    assert "message=\"the 'uncrustify' program is not installed (apt-get install " \
+        'uncrustify)"' in reason
+    hello = run(['bash', '-c', f'source {tmp_path}/install/setup.bash && ros2 run my_cpp my_node'],
+                tmp_path, ros_env, timeout=30)
+    assert hello.stdout == 'hello world my_cpp package\n'

@@ -23,6 +23,7 @@ setup(
             'ament_copyright = ament_copyright.main:main',
             'ament_lint_cmake = ament_copyright.lint_cmake:main',
             'ament_xmllint = ament_copyright.xmllint:main',
+            'ament_lint_skip = ament_copyright.skip:main',
         ],
         'pytest11': [
             'ament_copyright = ament_copyright.pytest_marker',
