@@ -10,6 +10,7 @@ import os
 import platform
 import re
 import sys
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -28,6 +29,7 @@ MAX_DOMAIN_ID = 232
 # Above 101, a domain's participant ports reach Linux's ephemeral port range (32768+).
 SAFE_DOMAIN_ID = 101
 SKIP_TOPICS = ('/parameter_events', '/rosout')
+DISCOVERY_WINDOW = 3.5  # seconds the topic checks watch the graph
 
 
 # --------------------------------------------------------------------------------------
@@ -190,8 +192,13 @@ def graph() -> Graph:
     if _graph is None:
         from ros2cli_lite.api import cli_node, wait_for_graph
         found = Graph()
+        started = time.monotonic()
         with cli_node() as node:
-            wait_for_graph(node)
+            wait_for_graph(node, settle=1.0, bound=DISCOVERY_WINDOW)
+            # A participant that missed our announcement shows up at its next periodic one
+            # (Fast DDS: every ~3 s), so a doctor, which is not latency-bound, always watches
+            # that long rather than report a half-discovered graph.
+            time.sleep(max(0.0, DISCOVERY_WINDOW - (time.monotonic() - started)))
             own = node.get_fully_qualified_name()
             for name, types in sorted(node.get_topic_names_and_types()):
                 found.topics.append((name, list(types)))
