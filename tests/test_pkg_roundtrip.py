@@ -51,6 +51,7 @@ def sourced(workspace: Path, env: dict[str, str], command: str) -> list[str]:
 
 @pytest.fixture(scope='module')
 def workspace(tmp_path_factory) -> Path:
+    """The two created packages, edited as the tutorials say, built with colcon."""
     from support import leased_domain, ros_environment
     root = tmp_path_factory.mktemp('ros2_ws')
     src = root / 'src'
@@ -72,12 +73,12 @@ def workspace(tmp_path_factory) -> Path:
     (interfaces / 'package.xml').write_text(xml.replace('  <test_depend>ament_lint_auto',
                                                         XML_INTERFACES + '  <test_depend>'
                                                         'ament_lint_auto'))
+    build = run(['colcon', 'build', '--symlink-install'], root, env)
+    assert 'Summary: 2 packages finished' in build.stdout, build.stdout
     return root
 
 
 def test_build_test_and_run_created_packages(workspace, ros_env):
-    build = run(['colcon', 'build', '--symlink-install'], workspace, ros_env)
-    assert 'Summary: 2 packages finished' in build.stdout, build.stdout
     tested = run(['colcon', 'test', '--event-handlers', 'console_direct+'], workspace, ros_env)
     results = run(['colcon', 'test-result', '--all', '--verbose'], workspace, ros_env)
     summary = re.search(r'Summary: (\d+) tests, (\d+) errors, (\d+) failures, (\d+) skipped',
