@@ -36,6 +36,8 @@ if [ -z "${_ROS_WHEELS_BOOTSTRAP_COMPLETE:-}" ] && [ -n "$_ws_pyver" ]; then
 fi
 
 export RMW_IMPLEMENTATION="${RMW_IMPLEMENTATION:-rmw_fastrtps_cpp}"
+# What an apt install's ros_environment package sets (ros2 doctor and scripts read them).
+export ROS_DISTRO="${ROS_DISTRO:-jazzy}" ROS_VERSION=2 ROS_PYTHON_VERSION=3
 # Keep DDS traffic on this machine unless the user deliberately chose otherwise.
 export ROS_AUTOMATIC_DISCOVERY_RANGE="${ROS_AUTOMATIC_DISCOVERY_RANGE:-LOCALHOST}"
 # Lets a hand-typed `colcon build` pick up the CMake fix for the wheels (scripts/setup writes it).

@@ -1,0 +1,94 @@
+"""`ros2 doctor`: Jazzy's summary and warning lines, the --report sections, bad settings."""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+
+import pytest
+
+from support import rerun_once_for_discovery, ros2
+
+WARNING = re.compile(r'^(/\S+\.py): (\d+): UserWarning: (.*)$')
+
+
+def warnings_of(stderr: str) -> list[str]:
+    """The messages of the `<file>: <line>: UserWarning: <message>` lines; nothing else."""
+    messages = []
+    for line in stderr.splitlines():
+        match = WARNING.match(line)
+        assert match, f'not a ros2doctor warning line: {line!r}'
+        messages.append(match.group(3))
+    return messages
+
+
+@rerun_once_for_discovery()
+def test_doctor_warns_about_dangling_topics_of_a_running_turtlesim(ros_env, launch):
+    turtlesim = launch('turtlesim', 'turtlesim_node', '--headless')
+    turtlesim.wait_for_output(r'Spawning turtle \[turtle1\]')
+    result = ros2(ros_env, 'doctor')
+    assert result.returncode == 0
+    assert result.stdout == '\nAll 6 checks passed\n\n'
+    messages = warnings_of(result.stderr)
+    assert 'Publisher without subscriber detected on /turtle1/pose.' in messages
+    assert 'Publisher without subscriber detected on /turtle1/color_sensor.' in messages
+    assert 'Subscriber without publisher detected on /turtle1/cmd_vel.' in messages
+    assert not any('/rosout' in m or '/parameter_events' in m for m in messages)
+
+    # A subscriber on /turtle1/pose takes its warning away, as the tutorial shows.
+    echo = launch(argv=['ros2', 'topic', 'echo', '/turtle1/pose'])
+    echo.wait_for_output(r'^x: ', timeout=20)
+    again = warnings_of(ros2(ros_env, 'doctor').stderr)
+    assert 'Publisher without subscriber detected on /turtle1/pose.' not in again
+    assert 'Publisher without subscriber detected on /turtle1/color_sensor.' in again
+
+    # With warnings counted, the topic check fails (and middleware, on a leased id above 101).
+    failing = ros2(ros_env, 'doctor', '--include-warnings')
+    match = re.fullmatch(r'\n(\d)/6 check\(s\) failed\n\nFailed modules: (.*)\n', failing.stdout)
+    assert match, failing.stdout
+    expected = ['middleware', 'topic'] if int(ros_env['ROS_DOMAIN_ID']) > 101 else ['topic']
+    assert (int(match.group(1)), match.group(2).split()) == (len(expected), expected)
+
+
+def test_doctor_report_has_jazzy_sections(ros_env):
+    result = ros2(ros_env, 'doctor', '--report')
+    assert result.returncode == 0, result.stderr
+    titles = [line.strip() for line in result.stdout.splitlines() if line.startswith('   ')
+              and line.strip().isupper()]
+    assert titles == ['PLATFORM INFORMATION', 'ROS 2 INFORMATION', 'NETWORK CONFIGURATION',
+                      'RMW MIDDLEWARE', 'TOPIC LIST', 'QOS COMPATIBILITY LIST',
+                      'PACKAGE VERSIONS']
+    out = result.stdout
+    assert '\n\n   ROS 2 INFORMATION\ndistribution name      : jazzy\n' in out
+    assert 'distribution type      : ros2\n' in out
+    assert 'middleware name    : rmw_fastrtps_cpp\n' in out
+    assert re.search(r'\ntopic\s+: none\npublisher count\s+: 0\nsubscriber count\s+: 0\n', out)
+    assert re.search(r'\nros-jazzy-rclpy\s+: locked=[\d.]+, local=[\d.]+\n', out)
+    assert re.search(r'\nros-jazzy-sensor-msgs\s+: locked=5\.3\.6, local=5\.3\.6\n', out)
+
+
+def test_doctor_fails_on_a_bad_domain_id_without_a_traceback(ros_env):
+    env = dict(ros_env, ROS_DOMAIN_ID='999')
+    result = ros2(env, 'doctor')
+    assert result.returncode == 0
+    assert 'Traceback' not in result.stderr
+    assert "ERROR: ROS_DOMAIN_ID is '999', allowed: an integer in [0, 232]." in \
+        warnings_of(result.stderr)
+    assert result.stdout.startswith('\n')
+    assert re.match(r'\n\d/6 check\(s\) failed\n\nFailed modules: middleware', result.stdout)
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason='needs root for its own network namespace')
+def test_doctor_warns_when_discovery_would_leave_the_machine(ros_env):
+    """SUBNET discovery is only tried inside a fresh network namespace (no traffic out)."""
+    env = dict(ros_env, ROS_AUTOMATIC_DISCOVERY_RANGE='SUBNET', ROS_DOMAIN_ID='150')
+    result = subprocess.run(['unshare', '--net', 'ros2', 'doctor', '--exclude-packages'],
+                            env=env, capture_output=True, text=True, timeout=60,
+                            stdin=subprocess.DEVNULL)
+    messages = warnings_of(result.stderr)
+    assert any(m.startswith('ROS_AUTOMATIC_DISCOVERY_RANGE is SUBNET: discovery traffic')
+               for m in messages), messages
+    assert any(m.startswith('ROS_DOMAIN_ID 150 is above 101') for m in messages), messages
+    assert 'Only loopback IP address is found.' in messages
+    assert result.stdout == '\nAll 5 checks passed\n\n'
