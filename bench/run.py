@@ -15,6 +15,7 @@ import cpu
 import latency
 import report
 import roundtrip
+import rqt
 import scale
 import setup_time
 from common import RESULTS, session
@@ -25,6 +26,7 @@ SUITE = {
     'scale': lambda s, quick: scale.run(s, counts=(1, 50) if quick else scale.COUNTS),
     'cpu': lambda s, quick: cpu.run(s, duration=8.0 if quick else cpu.DURATION_S),
     'setup': lambda s, quick: setup_time.run(s),
+    'rqt': lambda s, quick: rqt.run(s, duration=20.0 if quick else rqt.DURATION_S),
 }
 
 
