@@ -7,6 +7,7 @@ spawned once, then driven, then run into a wall). Screenshots go to artifacts/rq
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -191,6 +192,10 @@ def test_service_caller_spawns_and_sets_pen_and_arrow_keys_drive(world: World) -
     wait_for_pixel(canvas, round((x + 0.5) * PPM), round(500 - y * PPM),
                    lambda rgb: close_to(rgb, (255, 0, 0), 30), 10, 'red trail behind turtle2')
     screenshot(canvas, 'turtlesim_teleop')
+    # R: rotate_absolute to pi/2 (a goal, as turtle_teleop_key sends it).
+    canvas.keyboard.press('r')
+    world.probe.spin_until(lambda: poses and abs(poses[-1].theta - 1.5708) < 0.05, 10,
+                           'turtle2 turned to theta = pi/2 by the R key')
     canvas.close()
     services.close()
 
@@ -241,3 +246,57 @@ def test_console_shows_the_wall_warning(world: World) -> None:
     console.click('#clear')
     console.wait_for_function('document.querySelectorAll("#log tr").length === 0', timeout=5000)
     console.close()
+
+
+def test_topics_page_monitors_and_publishes(world: World) -> None:
+    from turtlesim.msg import Pose
+
+    page = world.page('/topics')
+    page.wait_for_selector('input[data-topic="/turtle1/pose"]', timeout=15000)
+    page.check('input[data-topic="/turtle1/pose"]')
+    row = 'tr[data-topic="/turtle1/pose"]'
+    page.wait_for_function(f'Number(document.querySelector(\'{row} .hz\').textContent) > 20',
+                           timeout=10000)
+    assert 'theta:' in page.inner_text(f'{row} .latest')
+    poses = world.probe.collect(Pose, '/turtle1/pose')
+    world.probe.spin_until(lambda: bool(poses), 10, 'a turtle1 pose')
+    start = poses[-1]
+    page.fill('#pub-topic', '/turtle1/cmd_vel')
+    page.fill('#pub-type', 'geometry_msgs/msg/Twist')
+    page.press('#pub-type', 'Tab')
+    page.wait_for_selector('input[name="linear.x"]', timeout=10000)
+    page.fill('input[name="linear.x"]', 'fast')
+    page.click('#publish')
+    page.wait_for_selector('#message .error', timeout=5000)
+    assert "'linear.x' must be a finite number" in page.inner_text('#message')
+    page.fill('input[name="linear.x"]', '-1.5')
+    page.click('#publish')
+    page.wait_for_selector('#message .ok', timeout=10000)
+    world.probe.spin_until(
+        lambda: math.hypot(poses[-1].x - start.x, poses[-1].y - start.y) > 0.3, 10,
+        'turtle1 moving after the published Twist')
+    screenshot(page, 'topics')
+    page.close()
+
+
+def test_actions_page_sends_a_goal_and_cancels_one(world: World) -> None:
+    page = world.page('/actions')
+    page.wait_for_function('Array.from(document.querySelectorAll("#action option"))'
+                           '.some(o => o.value === "/turtle1/rotate_absolute")', timeout=15000)
+    page.select_option('#action', '/turtle1/rotate_absolute')
+    page.wait_for_selector('input[name="theta"]', timeout=10000)
+    page.fill('input[name="theta"]', '2.5')
+    page.click('#send-goal')
+    page.wait_for_function('document.getElementById("goal-status").textContent'
+                           '.includes("SUCCEEDED")', timeout=15000)
+    assert 'delta:' in page.inner_text('#result')
+    assert 'remaining:' in page.inner_text('#feedback')
+    screenshot(page, 'actions')
+    page.fill('input[name="theta"]', '-2.5')
+    page.click('#send-goal')
+    page.wait_for_function('document.getElementById("goal-status").textContent'
+                           '.includes("accepted")', timeout=10000)
+    page.click('#cancel-goal')
+    page.wait_for_function('document.getElementById("goal-status").textContent'
+                           '.includes("CANCELED")', timeout=10000)
+    page.close()

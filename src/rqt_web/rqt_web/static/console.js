@@ -20,8 +20,8 @@
   const count = rqt.el('span', {id: 'count', class: 'keys'});
   const body = rqt.el('tbody', {id: 'log'});
   main.append(rqt.el('div', {class: 'row'}, severity, node, text, pause, clear, count),
-    rqt.el('table', {class: 'console-table'}, rqt.el('thead', {}, rqt.el('tr', {},
-      ...['#', 'Message', 'Severity', 'Node', 'Stamp', 'Location'].map((h) => rqt.el('th', {text: h})))), body));
+    rqt.el('div', {class: 'scroll'}, rqt.el('table', {class: 'console-table'}, rqt.el('thead', {}, rqt.el('tr', {},
+      ...['#', 'Message', 'Severity', 'Node', 'Stamp', 'Location'].map((h) => rqt.el('th', {text: h})))), body)));
 
   let entries = [];
   let counter = 0;
@@ -42,7 +42,7 @@
     body.replaceChildren(...wanted.slice(-SHOWN).reverse().map((e) => rqt.el('tr', {class: `sev-${e.severity}`},
       rqt.el('td', {text: e.index}), rqt.el('td', {class: 'message', text: e.message}),
       rqt.el('td', {text: e.severity}), rqt.el('td', {text: e.node}),
-      rqt.el('td', {text: stamp(e.stamp)}), rqt.el('td', {text: `${e.file}:${e.line}`}))));
+      rqt.el('td', {text: stamp(e.stamp)}), rqt.el('td', {text: `${e.file.split('/').pop()}:${e.line}`, title: e.file}))));
     count.textContent = `Displaying ${Math.min(wanted.length, SHOWN)} of ${entries.length} messages${paused ? ' (paused)' : ''}`;
   };
   const redraw = () => { if (!scheduled) { scheduled = true; requestAnimationFrame(draw); } };

@@ -37,6 +37,7 @@
     formBox.replaceChildren(description.error ? rqt.el('div', {class: 'error', text: description.error})
       : rqt.forms.build(description.fields));
     message.replaceChildren();
+    response.textContent = '';
   };
   select.addEventListener('change', showForm);
 
