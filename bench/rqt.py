@@ -38,6 +38,7 @@ def open_page(browser: Any, url: str) -> Any:
 
 def js_heap_mib(page: Any) -> float:
     cdp = page.context.new_cdp_session(page)
+    cdp.send('Performance.enable')
     metrics = {m['name']: m['value'] for m in cdp.send('Performance.getMetrics')['metrics']}
     cdp.detach()
     return metrics.get('JSHeapUsedSize', float('nan')) / 2**20
@@ -171,8 +172,11 @@ def main() -> None:
     options = parser.parse_args()
     from report import table
     with session('rqt') as current:
-        rows, _ = run(current, options.duration)
+        rows, data = run(current, options.duration)
     print(table(rows))
+    graph = data.get('rqt', {}).get('graph', {})
+    print('graph appear (s):', ' '.join(f'{t:.3f}' for t in graph.get('appear', [])))
+    print('graph vanish (s):', ' '.join(f'{t:.3f}' for t in graph.get('vanish', [])))
 
 
 if __name__ == '__main__':

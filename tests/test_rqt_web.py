@@ -79,6 +79,14 @@ def world(tmp_path_factory: pytest.TempPathFactory) -> Iterator[World]:
             server.stop()
 
 
+def submit(page: Any, field: str, value: str, button: str, outcome: str) -> str:
+    """Type `value` into `field`, click `button`, wait for an 'ok' or 'error' message."""
+    page.fill(field, value)
+    page.click(button)
+    page.wait_for_selector(f'#message .{outcome}', timeout=10000)
+    return page.inner_text('#message')
+
+
 def test_headless_turtlesim_prints_its_live_view_url(world: World) -> None:
     match = world.turtlesim.wait_for_output(r'Live view: (http://\S+)', timeout=20)
     assert match.group(1) == world.server.page_url('/turtlesim')
@@ -90,6 +98,7 @@ def test_requests_without_token_or_from_other_sites_are_refused(world: World) ->
     assert http_status(server.page_url('/graph')) == 200
     assert http_status(f'{base}/graph') == 403
     assert http_status(f'{base}/api/graph') == 403
+    assert http_status(f'{base}/ws', {'Connection': 'Upgrade', 'Upgrade': 'websocket'}) == 403
     assert http_status(f'{base}/graph?token=wrong') == 403
     # Another site's page (cross-site request, or a DNS-rebinding name for 127.0.0.1).
     assert http_status(server.page_url('/api/graph'), {'Origin': 'http://evil.example'}) == 403
@@ -130,6 +139,12 @@ def test_graph_shows_turtlesim_and_controller_joined_by_their_topics(world: Worl
         shown = page.evaluate('window.rqtGraph')
         assert '/rosout' not in shown['nodes']  # Hide debug is on by default
         screenshot(page, 'graph')
+        for button, name, start in (('#export-svg', 'rosgraph.svg', b'<svg'),
+                                    ('#export-png', 'rosgraph.png', b'\x89PNG')):
+            with page.expect_download() as download:
+                page.click(button)
+            assert download.value.suggested_filename == name
+            assert Path(download.value.path()).read_bytes().startswith(start)
         page.select_option('#mode', 'nodes')
         page.wait_for_function(
             'window.rqtGraph.edges.some(([s, t, label]) => s === "/turtle_controller" && '
@@ -168,17 +183,13 @@ def test_service_caller_spawns_and_sets_pen_and_arrow_keys_drive(world: World) -
     # set_pen: an out-of-range value is refused in the page, nothing is sent.
     services.select_option('#service', '/turtle2/set_pen')
     services.wait_for_selector('input[name="width"]', timeout=10000)
-    for field, value in (('r', '300'), ('g', '0'), ('b', '0'), ('width', '8'), ('off', '0')):
+    for field, value in (('g', '0'), ('b', '0'), ('width', '8'), ('off', '0')):
         services.fill(f'input[name="{field}"]', value)
-    services.click('#call')
-    services.wait_for_selector('#message .error', timeout=5000)
-    refused = services.inner_text('#message')
+    refused = submit(services, 'input[name="r"]', '300', '#call', 'error')
     assert "'r' must be an integer in [0, 255], got 300" in refused
     assert 'Not sent' in refused
     screenshot(services, 'service_caller_out_of_range')
-    services.fill('input[name="r"]', '255')
-    services.click('#call')
-    services.wait_for_selector('#message .ok', timeout=10000)
+    submit(services, 'input[name="r"]', '255', '#call', 'ok')
 
     # Arrow keys in the page drive turtle2 forward; the trail behind it is red.
     poses = world.probe.collect(Pose, '/turtle2/pose')
@@ -207,13 +218,9 @@ def test_parameter_set_changes_the_background(world: World) -> None:
                    'default background')
     params = world.page('/parameters', node='/turtlesim')
     params.wait_for_selector('input[data-name="background_r"]', timeout=15000)
-    params.fill('input[data-name="background_r"]', '300')
-    params.click('button[data-name="background_r"]')
-    params.wait_for_selector('#message .error', timeout=5000)
-    assert "must be in [0, 255], got 300" in params.inner_text('#message')
-    params.fill('input[data-name="background_r"]', '0')
-    params.click('button[data-name="background_r"]')
-    params.wait_for_selector('#message .ok', timeout=10000)
+    field, button = 'input[data-name="background_r"]', 'button[data-name="background_r"]'
+    assert 'must be in [0, 255], got 300' in submit(params, field, '300', button, 'error')
+    submit(params, field, '0', button, 'ok')
     wait_for_pixel(canvas, 3, 3, lambda rgb: close_to(rgb, (0, 86, 255), 2), 10,
                    'background after setting background_r to 0')
     screenshot(params, 'parameters')
@@ -265,13 +272,10 @@ def test_topics_page_monitors_and_publishes(world: World) -> None:
     page.fill('#pub-type', 'geometry_msgs/msg/Twist')
     page.press('#pub-type', 'Tab')
     page.wait_for_selector('input[name="linear.x"]', timeout=10000)
-    page.fill('input[name="linear.x"]', 'fast')
-    page.click('#publish')
-    page.wait_for_selector('#message .error', timeout=5000)
-    assert "'linear.x' must be a finite number" in page.inner_text('#message')
-    page.fill('input[name="linear.x"]', '-1.5')
-    page.click('#publish')
-    page.wait_for_selector('#message .ok', timeout=10000)
+    field = 'input[name="linear.x"]'
+    assert "'linear.x' must be a finite number" in submit(page, field, 'fast', '#publish',
+                                                          'error')
+    submit(page, field, '-1.5', '#publish', 'ok')
     world.probe.spin_until(
         lambda: math.hypot(poses[-1].x - start.x, poses[-1].y - start.y) > 0.3, 10,
         'turtle1 moving after the published Twist')
@@ -300,3 +304,19 @@ def test_actions_page_sends_a_goal_and_cancels_one(world: World) -> None:
     page.wait_for_function('document.getElementById("goal-status").textContent'
                            '.includes("CANCELED")', timeout=10000)
     page.close()
+
+
+def test_without_npm_libraries_only_the_graph_page_is_unavailable(world: World) -> None:
+    env = dict(world.env, RQT_WEB_JS_DIR=str(world.tmp / 'no-npm'))
+    server, _ = start_rqt(env, world.tmp / 'state-no-npm')
+    try:
+        page = world.browser.new_page()
+        page.goto(server.page_url('/graph'))
+        page.wait_for_selector('#graph-unavailable', timeout=15000)
+        assert 'Install npm and rerun scripts/setup' in page.inner_text('#graph-unavailable')
+        page.goto(server.page_url('/services'))
+        page.wait_for_function('document.querySelectorAll("#service option").length > 0',
+                               timeout=15000)
+        page.close()
+    finally:
+        server.stop()

@@ -25,7 +25,7 @@ from rclpy.context import Context
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
-from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.qos import DurabilityPolicy, QoSProfile
 from rclpy.signals import SignalHandlerOptions
 
 from rqt_web.forms import interface_class
@@ -34,12 +34,9 @@ NODE_NAME = '_rqt_web'
 GRAPH_PERIOD = 0.25  # seconds between graph polls while a page watches the graph
 ROSOUT_KEEP = 5000  # log messages kept for pages opened later (rqt_console keeps 10000)
 CANVAS_TYPE = 'std_msgs/msg/UInt8MultiArray'
-ROSOUT_QOS = QoSProfile(depth=1000, history=HistoryPolicy.KEEP_LAST,
-                        reliability=ReliabilityPolicy.RELIABLE,
-                        durability=DurabilityPolicy.TRANSIENT_LOCAL)
-CANVAS_QOS = QoSProfile(depth=1, history=HistoryPolicy.KEEP_LAST,
-                        reliability=ReliabilityPolicy.RELIABLE,
-                        durability=DurabilityPolicy.VOLATILE)
+# Reliable, volatile, keep-last unless said otherwise (QoSProfile's defaults).
+ROSOUT_QOS = QoSProfile(depth=1000, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+CANVAS_QOS = QoSProfile(depth=1)  # the newest frame only
 SEVERITY = {10: 'DEBUG', 20: 'INFO', 30: 'WARN', 40: 'ERROR', 50: 'FATAL'}
 
 

@@ -27,6 +27,9 @@ VENDOR_FILES = {
     'cytoscape-dagre.js': 'cytoscape-dagre/dist/cytoscape-dagre.js',
     'cytoscape-svg.js': 'cytoscape-svg/cytoscape-svg.js',
 }
+# Used unless the user chose a Fast DDS profile of their own (see the file's comment).
+DISCOVERY_PROFILE = Path(__file__).resolve().parent / 'fastdds_discovery.xml'
+PROFILE_VARIABLES = ('FASTRTPS_DEFAULT_PROFILES_FILE', 'FASTDDS_DEFAULT_PROFILES_FILE')
 SERVICE_TIMEOUT_MAX = 60.0
 MONITOR_WINDOW = 5.0  # seconds of messages the Topics page's Hz and bandwidth average over
 LATEST_YAML_LIMIT = 8000  # characters of a message shown in the Topics page
@@ -469,18 +472,13 @@ def make_app(token: str, bind_host: str, port_holder: dict) -> web.Application:
     app['log_sessions'] = set()
     app['sessions'] = set()
 
-    app.router.add_get('/', page)
-    app.router.add_get('/api/ping', ping)
-    app.router.add_get('/api/graph', graph)
-    app.router.add_get('/api/interface', interface)
-    app.router.add_post('/api/service/call', call_service)
-    app.router.add_post('/api/topic/publish', publish)
-    app.router.add_get('/api/parameters', parameters)
-    app.router.add_post('/api/parameters/set', set_parameter)
-    app.router.add_get('/ws', websocket)
-    app.router.add_get('/static/{name}', static_file)
-    app.router.add_get('/vendor/{name}', vendor_file)
-    app.router.add_get('/{page}', page)
+    app.router.add_routes([
+        web.get('/', page), web.get('/api/ping', ping), web.get('/api/graph', graph),
+        web.get('/api/interface', interface), web.post('/api/service/call', call_service),
+        web.post('/api/topic/publish', publish), web.get('/api/parameters', parameters),
+        web.post('/api/parameters/set', set_parameter), web.get('/ws', websocket),
+        web.get('/static/{name}', static_file), web.get('/vendor/{name}', vendor_file),
+        web.get('/{page}', page)])
 
     async def start_ros(app: web.Application) -> None:
         bridge = RosBridge(asyncio.get_running_loop())
@@ -520,6 +518,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.host not in ('127.0.0.1', 'localhost', '::1'):
         print(f'WARNING: listening on {args.host}: other machines can reach this server; '
               'only the token protects it', file=sys.stderr, flush=True)
+    if not any(os.environ.get(name) for name in PROFILE_VARIABLES):
+        os.environ['FASTRTPS_DEFAULT_PROFILES_FILE'] = str(DISCOVERY_PROFILE)
     token = security.new_token()
     port_holder = {'port': args.port}
     app = make_app(token, args.host, port_holder)
