@@ -36,6 +36,16 @@ def open_page(browser: Any, url: str) -> Any:
     return page
 
 
+def cpu_percent(pids: int | list[int], seconds: float) -> Any:
+    """% of a core each process used over the next `seconds` (one figure or a list)."""
+    listed = [pids] if isinstance(pids, int) else pids
+    before, started = [cpu_seconds(pid) for pid in listed], time.monotonic()
+    time.sleep(seconds)
+    elapsed = time.monotonic() - started
+    used = [100 * (cpu_seconds(pid) - b) / elapsed for pid, b in zip(listed, before, strict=True)]
+    return used[0] if isinstance(pids, int) else used
+
+
 def js_heap_mib(page: Any) -> float:
     cdp = page.context.new_cdp_session(page)
     cdp.send('Performance.enable')
@@ -110,18 +120,16 @@ def run(current: Session, duration: float = DURATION_S) -> tuple[list[Row], dict
             graph.wait_for_function('window.rqtGraph && window.rqtGraph.nodes.length > 0',
                                     timeout=20000)
             time.sleep(2.0)
-            before, started = cpu_seconds(server_pid), time.monotonic()
-            time.sleep(IDLE_S)
-            idle_cpu = 100 * (cpu_seconds(server_pid) - before) / (time.monotonic() - started)
+            idle_cpu = cpu_percent(server_pid, IDLE_S)
             data['graph'] = graph_changes(current, graph, probe)
             graph.close()
             # Motion: turtle_controller drives turtle1, the Turtlesim page draws it.
             controller = current.start('my_robot_controller', 'turtle_controller')
+            time.sleep(3.0)  # the controller starts and drives
+            unwatched = cpu_percent(sim.popen.pid, 5.0)  # turtlesim, nobody on ~/_canvas
             canvas = open_page(browser, server.page_url('/turtlesim'))
             data['motion'] = motion(canvas, MOTION_S)
-            before, started = cpu_seconds(server_pid), time.monotonic()
-            time.sleep(5.0)
-            driving_cpu = 100 * (cpu_seconds(server_pid) - before) / (time.monotonic() - started)
+            driving_cpu, watched = cpu_percent([server_pid, sim.popen.pid], 5.0)
             screenshot(canvas, 'bench_turtlesim')
             # Memory: the same page (and a console) open for `duration` seconds while driving.
             console = open_page(browser, server.page_url('/console'))
@@ -154,6 +162,8 @@ def run(current: Session, duration: float = DURATION_S) -> tuple[list[Row], dict
         Row('rqt', 'server CPU, idle, graph page open', f'{idle_cpu:.1f} % of a core', '< 5 %',
             verdict(idle_cpu < 5.0)),
         Row('rqt', 'server CPU, Turtlesim page, turtle driving', f'{driving_cpu:.1f} % of a core'),
+        Row('rqt', 'turtlesim CPU, turtle driving: canvas unwatched / watched',
+            f'{unwatched:.1f} / {watched:.1f} % of a core'),
         Row('rqt', f'server RSS over {minutes:.1f} min (start / max / end)',
             f'{memory[0][1]:.0f} / {max(s[1] for s in memory):.0f} / {memory[-1][1]:.0f} MiB',
             'bounded'),

@@ -145,6 +145,13 @@ def test_graph_shows_turtlesim_and_controller_joined_by_their_topics(world: Worl
                 page.click(button)
             assert download.value.suggested_filename == name
             assert Path(download.value.path()).read_bytes().startswith(start)
+        # Clicking a node lists what it offers, services included (not drawn, as upstream).
+        x, y = page.evaluate('(() => { const p = window.rqtCy.$(\'node[label="/turtlesim"]\')'
+                             '.renderedPosition(); const box = document.getElementById("cy")'
+                             '.getBoundingClientRect(); return [box.x + p.x, box.y + p.y]; })()')
+        page.mouse.click(x, y)
+        page.wait_for_function('document.getElementById("node-details").textContent'
+                               '.includes("/turtle1/set_pen: turtlesim/srv/SetPen")', timeout=5000)
         page.select_option('#mode', 'nodes')
         page.wait_for_function(
             'window.rqtGraph.edges.some(([s, t, label]) => s === "/turtle_controller" && '

@@ -21,8 +21,20 @@
   const exportPng = rqt.el('button', {id: 'export-png', text: 'Export PNG'});
   const note = rqt.el('span', {id: 'graph-note', class: 'keys'});
   const box = rqt.el('div', {id: 'cy'});
+  const details = rqt.el('pre', {id: 'node-details'});
   main.append(rqt.el('div', {class: 'row'}, mode, hideDebugLabel, rqt.el('span', {text: 'Hide:'}),
-    hideDeadLabel, hideLeafLabel, showActionsLabel, filter, exportSvg, exportPng, note), box);
+    hideDeadLabel, hideLeafLabel, showActionsLabel, filter, exportSvg, exportPng, note), box,
+  rqt.el('p', {class: 'keys', text: 'Click a node for its topics, services and actions.'}), details);
+
+  // What a node offers, as `ros2 node info` lists it (services are not drawn, as in rqt_graph).
+  const describeNode = (name) => {
+    const node = graph && graph.nodes.find((n) => n.name === name);
+    if (!node) return '';
+    const section = (title, pairs) => `  ${title}:\n${pairs.map(([n, t]) => `    ${n}: ${t.join(', ')}`).join('\n')}`;
+    return [name, section('Subscribers', node.subs), section('Publishers', node.pubs),
+      section('Service Servers', node.services), section('Action Servers', node.action_servers),
+      section('Action Clients', node.action_clients)].join('\n');
+  };
 
   const DEBUG_TOPICS = new Set(['/rosout', '/rosout_agg', '/parameter_events', '/clock', '/statistics', '/diagnostics', '/diagnostics_agg']);
   let cy = null;
@@ -142,6 +154,8 @@
         {selector: 'edge', style: {'curve-style': 'bezier', 'target-arrow-shape': 'triangle', width: 1.5, 'line-color': '#555', 'target-arrow-color': '#555', label: 'data(label)', 'font-size': 10, 'text-wrap': 'wrap'}},
       ],
     });
+    window.rqtCy = cy;  // for the browser tests
+    cy.on('tap', 'node[kind="node"]', (event) => { details.textContent = describeNode(event.target.data('label')); });
     render();
   })();
 
