@@ -20,7 +20,7 @@ ALIASES = {'service_caller': 'services', 'reconfigure': 'parameters', 'params': 
 
 def parse_args(argv: list[str], page: str | None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(
-        prog='rqt' if page in (None, 'index') else f'rqt_{page}',
+        prog=os.path.basename(sys.argv[0]) or 'rqt',
         description='Open rqt in the browser (one local web app per user and ROS settings).')
     if page is None:
         parser.add_argument('page', nargs='?', default='index',

@@ -42,8 +42,6 @@ class CanvasStream:
         self._thread = threading.Thread(target=self._run, name='turtlesim-canvas-stream',
                                         daemon=True)
         self._thread.start()
-        if os.environ.get('QT_QPA_PLATFORM') == 'offscreen':
-            self.frame.get_logger().info(live_view_hint())
 
     def stop(self) -> None:
         self._stop.set()
@@ -51,6 +49,8 @@ class CanvasStream:
             self._thread.join(timeout=2.0)
 
     def _run(self) -> None:
+        if os.environ.get('QT_QPA_PLATFORM') == 'offscreen':
+            self.frame.get_logger().info(live_view_hint())
         last_state = None
         last_sent = 0.0
         while not self._stop.is_set():
