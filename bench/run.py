@@ -17,6 +17,7 @@ import latency
 import launch_time
 import report
 import roundtrip
+import rqt
 import scale
 import setup_time
 from common import RESULTS, session
@@ -29,6 +30,7 @@ SUITE = {
     'setup': lambda s, quick: setup_time.run(s),
     'daemon': lambda s, quick: daemon.run(s, calls=20 if quick else daemon.CALLS),
     'launch': lambda s, quick: launch_time.run(s, repeats=2 if quick else launch_time.REPEATS),
+    'rqt': lambda s, quick: rqt.run(s, duration=20.0 if quick else rqt.DURATION_S),
 }
 
 

@@ -31,6 +31,7 @@ from turtlesim.srv import Kill, Spawn
 
 from turtlesim_py import sim
 from turtlesim_py.canvas import Canvas
+from turtlesim_py.canvas_stream import CanvasStream
 from turtlesim_py.turtle import Turtle
 
 BACKGROUND = (('background_r', 69, 'Red channel of the background color'),
@@ -133,6 +134,7 @@ class TurtleFrame(Node):
             self.clock_pub = self.create_publisher(Clock, '/clock', 10)
         for service in self.services:
             self.configure_introspection(service)
+        self.canvas_stream = CanvasStream(self)  # hidden ~/_canvas for rqt's Turtlesim page
 
         self.get_logger().info(
             f'Starting turtlesim with node name {self.get_fully_qualified_name()}')
@@ -161,9 +163,11 @@ class TurtleFrame(Node):
         self._ticker = threading.Thread(target=self._tick_loop, name='turtlesim-tick',
                                         daemon=True)
         self._ticker.start()
+        self.canvas_stream.start()
 
     def stop(self) -> None:
         self._stop.set()
+        self.canvas_stream.stop()
         if self._ticker is not None:
             self._ticker.join(timeout=2.0)
 

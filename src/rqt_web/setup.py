@@ -1,0 +1,37 @@
+from glob import glob
+
+from setuptools import find_packages, setup
+
+package_name = 'rqt_web'
+# The upstream rqt package names the tutorials type (`ros2 run rqt_graph rqt_graph`): this
+# package registers each in the ament index and installs its lib/<name>/<name> launcher.
+TOOLS = ['rqt_gui', 'rqt_graph', 'rqt_console', 'rqt_service_caller', 'rqt_reconfigure',
+         'rqt_topic', 'rqt_action']
+
+setup(
+    name=package_name,
+    version='0.1.0',
+    packages=find_packages(exclude=['test']),
+    package_data={package_name: ['static/*', 'fastdds_discovery.xml']},
+    data_files=[
+        ('share/ament_index/resource_index/packages',
+         ['resource/' + package_name] + ['resource/' + tool for tool in TOOLS]),
+        ('share/' + package_name, ['package.xml', 'package.json', 'package-lock.json']),
+        ('share/' + package_name + '/static', sorted(glob('rqt_web/static/*'))),
+        *[('lib/' + tool, ['scripts/' + tool]) for tool in TOOLS],
+    ],
+    install_requires=['setuptools'],
+    zip_safe=False,
+    maintainer='Turtlesim Team',
+    maintainer_email='team@turtles.example.com',
+    description='rqt in the browser (graph, services, topics, parameters, console, actions, '
+                'turtlesim view).',
+    license='Apache-2.0',
+    entry_points={
+        'console_scripts': [
+            'rqt = rqt_web.launcher:main',
+            'rqt_graph = rqt_web.launcher:graph_main',
+            'rqt_console = rqt_web.launcher:console_main',
+        ],
+    },
+)
