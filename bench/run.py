@@ -11,6 +11,7 @@ import argparse
 import json
 import time
 
+import bag
 import cpu
 import latency
 import report
@@ -25,6 +26,7 @@ SUITE = {
     'scale': lambda s, quick: scale.run(s, counts=(1, 50) if quick else scale.COUNTS),
     'cpu': lambda s, quick: cpu.run(s, duration=8.0 if quick else cpu.DURATION_S),
     'setup': lambda s, quick: setup_time.run(s),
+    'bag': lambda s, quick: bag.run(s, turtles=50 if quick else bag.TURTLES),
 }
 
 
