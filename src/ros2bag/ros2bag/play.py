@@ -25,7 +25,7 @@ from ros2bag.metadata import (
 from ros2bag.session import SpaceKey, ros_node
 from ros2bag.storage import STORAGES, BagReader
 
-DISCOVERY_BOUND = 2.0  # seconds to wait for known subscribers to match a new publisher
+DISCOVERY_BOUND = 4.0  # seconds to wait for known subscribers to match a new publisher
 ACK_BOUND = 2.0  # seconds to wait at the end for reliable subscribers to acknowledge
 
 

@@ -106,7 +106,9 @@ class BagWriter:
         self.topics[topic.name] = topic
         self._handles[topic.name] = self._backend.add_topic(topic)
 
-    def write(self, topic: str, data: bytes, recv_ns: int, send_ns: int) -> None:
+    def write(self, topic: str, data: bytes, recv_ns: int, send_ns: int,
+              sequence: int = 0) -> None:
+        """One message; `sequence` is the publisher's sequence number (0: unknown)."""
         current = self.files[-1]
         if current.count and (
                 (self.max_ns and recv_ns - current.start >= self.max_ns)
@@ -114,7 +116,7 @@ class BagWriter:
             self._backend.close(self._metadata())
             self._open_file()
             current = self.files[-1]
-        self._backend.write(self._handles[topic], data, recv_ns, send_ns)
+        self._backend.write(self._handles[topic], data, recv_ns, send_ns, sequence)
         current.add(recv_ns)
         self.topics[topic].message_count += 1
         now = time.monotonic()
@@ -172,8 +174,12 @@ class _McapFile:
             {'offered_qos_profiles': dump_qos_profiles(topic.offered_qos_profiles),
              'topic_type_hash': topic.type_description_hash})
 
-    def write(self, channel: int, data: bytes, recv_ns: int, send_ns: int) -> None:
-        self.writer.add_message(channel, log_time=recv_ns, data=data, publish_time=send_ns)
+    def write(self, channel: int, data: bytes, recv_ns: int, send_ns: int, sequence: int
+              ) -> None:
+        # MCAP's sequence is "a message counter assigned by the publisher": the DDS
+        # publication sequence number fits it (Jazzy writes 0); it makes drops countable.
+        self.writer.add_message(channel, log_time=recv_ns, data=data, publish_time=send_ns,
+                                sequence=sequence & 0xFFFFFFFF)
 
     def size(self) -> int:
         return self.stream.tell()
@@ -213,7 +219,8 @@ class _Sqlite3File:
             serialization_format=topic.serialization_format,
             offered_qos_profiles=[_rosbags_qos(Qos, p) for p in topic.offered_qos_profiles])
 
-    def write(self, connection: Any, data: bytes, recv_ns: int, _send_ns: int) -> None:
+    def write(self, connection: Any, data: bytes, recv_ns: int, _send_ns: int, _sequence: int
+              ) -> None:
         self.writer.write(connection, recv_ns, data)
 
     def size(self) -> int:
