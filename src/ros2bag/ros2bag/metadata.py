@@ -259,7 +259,7 @@ def read_metadata_file(directory: str) -> BagMetadata:
                        f"was killed before closing it (try 'ros2 bag reindex {directory}')"
                        ) from None
     except (OSError, yaml.YAMLError) as error:
-        raise BagError(f"Cannot read '{path}': {_first_line(error)}") from None
+        raise BagError(f"Cannot read '{path}': {one_line(error)}") from None
     try:
         info = document['rosbag2_bagfile_information']
         version = int(info['version'])
@@ -291,7 +291,7 @@ def read_metadata_file(directory: str) -> BagMetadata:
             custom_data=dict(info.get('custom_data') or {}))
     except (KeyError, TypeError, ValueError, AttributeError, yaml.YAMLError) as error:
         raise BagError(f"'{path}' is not valid rosbag2 metadata (missing or bad field "
-                       f'{_first_line(error)})') from None
+                       f'{one_line(error)})') from None
     meta.bag_size = directory_size(directory)
     return meta
 
@@ -307,6 +307,9 @@ def directory_size(directory: str) -> int:
     return total
 
 
-def _first_line(error: BaseException) -> str:
+def one_line(error: BaseException) -> str:
+    """An exception as one line for the user: the OS's reason, else its first line."""
+    if isinstance(error, OSError) and error.strerror:
+        return error.strerror + (f": '{error.filename}'" if error.filename else '')
     text = str(error).strip().splitlines()
     return text[0] if text else type(error).__name__

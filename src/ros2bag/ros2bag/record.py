@@ -20,6 +20,7 @@ from ros2bag.metadata import (
     SERVICE_EVENT_SUFFIX,
     BagError,
     TopicInfo,
+    one_line,
     qos_to_dict,
     request_qos_for_offers,
 )
@@ -254,7 +255,7 @@ class Recorder:
                                   info['source_timestamp'],
                                   info.get('publication_sequence_number') or 0)
             except (OSError, BagError) as error:
-                self.failed = f'Failed to write to bag: {_one_line(error)}'
+                self.failed = f'Failed to write to bag: {one_line(error)}'
 
         def on_message_events(data: bytes) -> None:
             stamp = time.time_ns()
@@ -307,7 +308,9 @@ class Recorder:
         self.log.info('Event publisher thread: Exiting')
         self.log.info('Recording stopped')
         if self.failed or closing_error:
-            return f'[ERROR] [ros2bag]: {self.failed or closing_error}'
+            hint = f"; recorded so far: make space, then 'ros2 bag reindex {self.writer.uri}'" \
+                if closing_error and self.writer.storage == 'mcap' else ''
+            return f'[ERROR] [ros2bag]: {self.failed or closing_error}{hint}'
         return 0
 
     def _drain(self, executor: Any) -> None:
@@ -329,13 +332,13 @@ class Recorder:
         try:
             self.writer.flush()
         except OSError as error:
-            self.failed = f'Failed to write to bag: {_one_line(error)}'
+            self.failed = f'Failed to write to bag: {one_line(error)}'
 
     def _close(self) -> str | None:
         try:
             self.writer.close()
         except (OSError, BagError) as error:
-            return f"Failed to close bag '{self.writer.uri}': {_one_line(error)}"
+            return f"Failed to close bag '{self.writer.uri}': {one_line(error)}"
         return None
 
 
@@ -356,11 +359,4 @@ def _hash_string(value: Any) -> str:
     if version != 1 or not digest:
         return ''
     return 'RIHS01_' + bytes(digest).hex()
-
-
-def _one_line(error: BaseException) -> str:
-    if isinstance(error, OSError) and error.strerror:
-        return error.strerror
-    lines = str(error).strip().splitlines()
-    return lines[0] if lines else type(error).__name__
 

@@ -22,6 +22,7 @@ from ros2bag.metadata import (
     dump_qos_profiles,
     dump_yaml,
     metadata_to_dict,
+    one_line,
     read_metadata_file,
     write_metadata_file,
 )
@@ -29,13 +30,6 @@ from ros2bag.metadata import (
 STORAGES = ('mcap', 'sqlite3')
 FLUSH_PERIOD = 0.5  # seconds: the most a SIGKILLed recorder can lose
 MCAP_CHUNK_SIZE = 768 * 1024  # mcap-cpp's default, which Jazzy's plugin keeps
-
-
-def _one_line(error: BaseException) -> str:
-    if isinstance(error, OSError) and error.strerror:
-        return error.strerror + (f": '{error.filename}'" if error.filename else '')
-    lines = str(error).strip().splitlines()
-    return lines[0] if lines else type(error).__name__
 
 
 # --------------------------------------------------------------------------------------
@@ -80,7 +74,7 @@ class BagWriter:
         except FileExistsError:
             raise BagError(f"Output folder '{uri}' already exists.") from None
         except OSError as error:
-            raise BagError(f"Cannot create output folder '{uri}': {_one_line(error)}") from None
+            raise BagError(f"Cannot create output folder '{uri}': {one_line(error)}") from None
         self._open_file()
 
     # ---- files ----
@@ -94,7 +88,7 @@ class BagWriter:
                 self._backend = _Sqlite3File(self.uri)
                 name = self._backend.name
         except OSError as error:
-            raise BagError(f"Cannot write to '{self.uri}': {_one_line(error)}") from None
+            raise BagError(f"Cannot write to '{self.uri}': {one_line(error)}") from None
         self.files.append(_FileStats(name))
         self._handles = {}
         for topic in self.topics.values():
@@ -285,7 +279,7 @@ class BagReader:
             self.reader.open()
         except Exception as error:  # any library failure is a damaged bag to the user
             raise BagError(f"Cannot open bag '{path}': a storage file is truncated or corrupt "
-                           f'({_one_line(error)}); an MCAP bag can be salvaged with '
+                           f'({one_line(error)}); an MCAP bag can be salvaged with '
                            f"'ros2 bag reindex {path}'") from None
 
     def messages(self, topics: set[str] | None = None, start_ns: int = 0
@@ -299,7 +293,7 @@ class BagReader:
                     connections=connections, start=start_ns or None):
                 yield connection.topic, stamp, bytes(data)
         except Exception as error:
-            raise BagError(f"Bag '{self.path}' is damaged: {_one_line(error)}; an MCAP bag can "
+            raise BagError(f"Bag '{self.path}' is damaged: {one_line(error)}; an MCAP bag can "
                            f"be salvaged with 'ros2 bag reindex {self.path}'") from None
 
     def verify(self) -> None:
