@@ -54,13 +54,18 @@ def reliable(depth: int = 1000) -> QoSProfile:
 # --- record -> info -> play against turtlesim -----------------------------------------------
 
 def drive_and_settle(probe, publisher, poses) -> None:
-    """Publish a recognisable drive (arc then straight), then wait until the turtle stops."""
-    for i in range(16):
-        msg = Twist()
-        msg.linear.x = 1.5
-        msg.angular.z = 1.2 if i < 8 else 0.0
+    """Drive an arc for 1.5 s, stop, and wait until the turtle stands still.
+
+    One command repeated, then an explicit stop: where the turtle ends depends on the time
+    between the first command and the stop (which the bag keeps), not on turtlesim's 1 s
+    command timeout nor on which command a loaded turtlesim applied in which tick.
+    """
+    msg = Twist()
+    msg.linear.x, msg.angular.z = 1.5, 1.2
+    for _ in range(15):
         publisher.publish(msg)
         probe.spin_for(0.1)
+    publisher.publish(Twist())
     settle(probe, poses)
 
 
@@ -120,10 +125,13 @@ def test_record_info_play_round_trip_replays_the_path(launch, probe, ros_env, tu
         assert channel.metadata['offered_qos_profiles'].startswith(
             '- history: unknown\n  depth: 0\n  reliability: reliable\n  durability: volatile\n')
         decoded = [m for _, _, _, m in reader.iter_decoded_messages()]
-    assert [(m.linear.x, m.angular.z) for m in decoded] == [(1.5, 1.2)] * 8 + [(1.5, 0.0)] * 8
+    assert [(m.linear.x, m.angular.z) for m in decoded] == [(1.5, 1.2)] * 15 + [(0.0, 0.0)]
 
-    probe.call(interface_type('std_srvs/srv/Empty'), '/reset',
-               interface_type('std_srvs/srv/Empty').Request())
+    # Back to the start; a teleport keeps turtle1 (a reset would make its subscriptions anew,
+    # and a loaded turtlesim may take long to match them with the player).
+    teleport = interface_type('turtlesim/srv/TeleportAbsolute')
+    probe.call(teleport, '/turtle1/teleport_absolute',
+               teleport.Request(x=5.544445, y=5.544445, theta=0.0))
     settle(probe, poses)
     assert math.dist((poses[-1][1].x, poses[-1][1].y), (5.544445, 5.544445)) < 1e-3
     probe.node.destroy_publisher(cmd)

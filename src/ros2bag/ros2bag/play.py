@@ -26,6 +26,7 @@ from ros2bag.session import SpaceKey, ros_node
 from ros2bag.storage import STORAGES, BagReader
 
 DISCOVERY_BOUND = 4.0  # seconds to wait for known subscribers to match a new publisher
+MATCH_SETTLE = 0.6  # seconds the graph must stay unchanged and matched before playing
 ACK_BOUND = 2.0  # seconds to wait at the end for reliable subscribers to acknowledge
 
 
@@ -169,7 +170,9 @@ class Player:
                        for p in self.publishers.values()) and all(
                 c.service_is_ready() for c, _ in self.clients.values())
 
-        wait_for_graph(self.node, matched, settle=0.2, bound=DISCOVERY_BOUND)
+        # The settle time also covers the other side: a subscriber may match our publisher
+        # some hundred milliseconds after we matched it, and drops what comes before.
+        wait_for_graph(self.node, matched, settle=MATCH_SETTLE, bound=DISCOVERY_BOUND)
 
     # ---- playing ----
     def run(self, stop: threading.Event) -> int | str:

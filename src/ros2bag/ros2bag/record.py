@@ -158,9 +158,10 @@ class Recorder:
         self.started = time.monotonic()
         self.warned_missing = False
         self.keys = SpaceKey(self.toggle_paused)
-        # ROS2BAG_EXECUTOR=single: rclpy's SingleThreadedExecutor, which hands the DDS
-        # timestamps and sequence numbers over, at about four times the CPU per message.
-        self.events = os.environ.get('ROS2BAG_EXECUTOR', 'events') != 'single'
+        # ROS2BAG_EXECUTOR=events: rclpy's EventsExecutor, about a quarter of the CPU per
+        # message, but it cannot hand the message info over (rclpy 7.1.6), so the reception
+        # time is read in Python, late when the process is starved: play's timing suffers.
+        self.events = os.environ.get('ROS2BAG_EXECUTOR') == 'events'
         self.taken = 0  # messages taken from the middleware, recorded or not
 
     # ---- what to record ----
