@@ -11,6 +11,7 @@ import argparse
 import json
 import time
 
+import bag
 import cpu
 import daemon
 import latency
@@ -31,6 +32,7 @@ SUITE = {
     'daemon': lambda s, quick: daemon.run(s, calls=20 if quick else daemon.CALLS),
     'launch': lambda s, quick: launch_time.run(s, repeats=2 if quick else launch_time.REPEATS),
     'rqt': lambda s, quick: rqt.run(s, duration=20.0 if quick else rqt.DURATION_S),
+    'bag': lambda s, quick: bag.run(s, turtles=50 if quick else bag.TURTLES),
 }
 
 

@@ -1,0 +1,20 @@
+"""ros2 bag: record, play, info and reindex rosbag2 bags (one module per verb)."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+
+VERBS = {
+    'record': 'Record ROS data to a bag',
+    'play': 'Play back ROS data from a bag',
+    'info': 'Print information about a bag to the screen',
+    'reindex': 'Reconstruct metadata file for a bag',
+}
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    verbs = parser.add_subparsers(title='Commands', metavar='Call')
+    for name, help_text in VERBS.items():
+        verb = verbs.add_parser(name, help=help_text, description=help_text)
+        importlib.import_module(f'ros2bag.{name}').add_arguments(verb)

@@ -1,0 +1,119 @@
+"""What `record` and `play` share: a node spun until Ctrl-C/SIGTERM, and the space key.
+
+Signals only set an event that the spin loop checks every SIGNAL_CHECK_PERIOD, so a stop
+never interrupts rclpy (or a file write) half-way: the bag is always closed properly.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import sys
+import threading
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from typing import Any
+
+SIGNAL_CHECK_PERIOD = 0.1
+
+
+@contextmanager
+def ros_node(name: str) -> Iterator[tuple[Any, threading.Event]]:
+    """A node in its own context, with SIGINT/SIGTERM setting the yielded stop event."""
+    import rclpy
+    from rclpy.context import Context
+    from rclpy.signals import SignalHandlerOptions
+
+    stop = threading.Event()
+    previous = {s: signal.signal(s, lambda _n, _f: stop.set())
+                for s in (signal.SIGINT, signal.SIGTERM)}
+    context = Context()
+    rclpy.init(args=[], context=context, signal_handler_options=SignalHandlerOptions.NO)
+    node = rclpy.create_node(name, context=context)
+    try:
+        yield node, stop
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+
+
+def make_executor(node: Any, events: bool = False) -> Any:
+    """SingleThreadedExecutor, or rclpy's EventsExecutor (no Python wait-set per wake-up).
+
+    rclpy 7.1.6's EventsExecutor fails ("null argument to internal routine") on callbacks
+    that take the message info, so with it the reception time is read in the callback.
+    """
+    if events:
+        from rclpy.experimental.events_executor import EventsExecutor
+        executor = EventsExecutor(context=node.context)
+    else:
+        from rclpy.executors import SingleThreadedExecutor
+        executor = SingleThreadedExecutor(context=node.context)
+    executor.add_node(node)
+    return executor
+
+
+def spin_until(executor: Any, node: Any, done: Callable[[], bool]) -> None:
+    import rclpy
+    from rclpy.executors import ExternalShutdownException
+
+    try:
+        while not done() and rclpy.ok(context=node.context):
+            executor.spin_once(timeout_sec=SIGNAL_CHECK_PERIOD)
+    except ExternalShutdownException:
+        pass
+
+
+class SpaceKey:
+    """Calls `on_space` when the space bar is pressed, when stdin is a terminal.
+
+    The terminal is switched to cbreak mode (keys arrive unbuffered, no echo) and restored
+    on close. Without a terminal (pipes, tests, launch) it does nothing.
+    """
+
+    def __init__(self, on_space: Callable[[], None]):
+        self.on_space = on_space
+        self.active = False
+        self._saved: Any = None
+        try:
+            self.active = sys.stdin.isatty()
+        except (AttributeError, ValueError):
+            self.active = False
+
+    def start(self) -> None:
+        if not self.active:
+            return
+        import termios
+        import tty
+
+        fd = sys.stdin.fileno()
+        try:
+            self._saved = termios.tcgetattr(fd)
+            tty.setcbreak(fd)
+        except termios.error:
+            self.active = False
+            return
+        threading.Thread(target=self._read, args=(fd,), daemon=True).start()
+
+    def _read(self, fd: int) -> None:
+        while self.active:
+            try:
+                key = os.read(fd, 1)
+            except OSError:
+                return
+            if not key:
+                return
+            if key == b' ':
+                self.on_space()
+
+    def close(self) -> None:
+        if self._saved is not None:
+            import termios
+            try:
+                termios.tcsetattr(sys.stdin.fileno(), termios.TCSADRAIN, self._saved)
+            except termios.error:
+                pass
+            self._saved = None
+        self.active = False
