@@ -8,7 +8,7 @@ import subprocess
 
 import pytest
 
-from support import rerun_once_for_discovery, ros2
+from support import ros2
 
 WARNING = re.compile(r'^(/\S+\.py): (\d+): UserWarning: (.*)$')
 
@@ -23,7 +23,6 @@ def warnings_of(stderr: str) -> list[str]:
     return messages
 
 
-@rerun_once_for_discovery()
 def test_doctor_warns_about_dangling_topics_of_a_running_turtlesim(ros_env, launch):
     turtlesim = launch('turtlesim', 'turtlesim_node', '--headless')
     turtlesim.wait_for_output(r'Spawning turtle \[turtle1\]')

@@ -10,7 +10,6 @@ import os
 import platform
 import re
 import sys
-import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -29,7 +28,7 @@ MAX_DOMAIN_ID = 232
 # Above 101, a domain's participant ports reach Linux's ephemeral port range (32768+).
 SAFE_DOMAIN_ID = 101
 SKIP_TOPICS = ('/parameter_events', '/rosout')
-DISCOVERY_WINDOW = 3.5  # seconds the topic checks watch the graph
+DISCOVERY_WINDOW = 5.0  # longest wait for the doctor's node to see what the daemon sees
 
 
 # --------------------------------------------------------------------------------------
@@ -191,14 +190,20 @@ def graph() -> Graph:
         raise RuntimeError('ROS_DOMAIN_ID is invalid')
     if _graph is None:
         from ros2cli_lite.api import cli_node, wait_for_graph
+        from ros2cli_lite.graph import get_graph
+        # The daemon's settled graph says what exists; our own node (which the QoS profiles
+        # need) must then see at least every endpoint the daemon sees before it is read.
+        expected = get_graph(detail=False)
         found = Graph()
-        started = time.monotonic()
         with cli_node() as node:
-            wait_for_graph(node, settle=1.0, bound=DISCOVERY_WINDOW)
-            # A participant that missed our announcement shows up at its next periodic one
-            # (Fast DDS: every ~3 s), so a doctor, which is not latency-bound, always watches
-            # that long rather than report a half-discovered graph.
-            time.sleep(max(0.0, DISCOVERY_WINDOW - (time.monotonic() - started)))
+            def sees_everything() -> bool:
+                for name, _ in expected.topics(include_hidden=True):
+                    publishers, subscribers = expected.topic_counts(name)
+                    if (len(node.get_publishers_info_by_topic(name)) < publishers
+                            or len(node.get_subscriptions_info_by_topic(name)) < subscribers):
+                        return False
+                return True
+            wait_for_graph(node, ready=sees_everything, settle=0.3, bound=DISCOVERY_WINDOW)
             own = node.get_fully_qualified_name()
             for name, types in sorted(node.get_topic_names_and_types()):
                 found.topics.append((name, list(types)))
