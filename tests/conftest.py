@@ -43,6 +43,31 @@ def launch(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Callable[..., Ro
         process.stop()
 
 
+@pytest.fixture(scope='module')
+def module_ros_env() -> Iterator[dict[str, str]]:
+    """A domain and environment shared by the tests of one module (one turtlesim for all)."""
+    with leased_domain() as leased:
+        yield ros_environment(leased)
+
+
+@pytest.fixture(scope='module')
+def module_launch(module_ros_env: dict[str, str], tmp_path_factory: pytest.TempPathFactory
+                  ) -> Iterator[Callable[..., RosProcess]]:
+    """launch('pkg', 'exe', *args) in module_ros_env; the processes stop after the module."""
+    started: list[RosProcess] = []
+    directory = tmp_path_factory.mktemp('module_launch')
+
+    def start(package: str, name: str, *args: str) -> RosProcess:
+        log = directory / f'{len(started):02d}-{name}.log'
+        process = RosProcess([executable(package, name), *args], module_ros_env, log)
+        started.append(process)
+        return process
+
+    yield start
+    for process in reversed(started):
+        process.stop()
+
+
 @pytest.fixture
 def probe(domain: int) -> Iterator[TestNode]:
     node = TestNode(domain)

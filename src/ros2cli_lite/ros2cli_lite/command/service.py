@@ -1,4 +1,4 @@
-"""ros2 service: list, type, find, info, call."""
+"""ros2 service: list, type, find, info, call, echo."""
 
 from __future__ import annotations
 
@@ -48,6 +48,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     p.add_argument('--timeout', metavar='S', type=float, default=5.0,
                    help='Give up when the service is not available within S seconds '
                    '(default: %(default)s; 0 or less waits forever)')
+    p = verb('echo', echo_verb, 'Echo a service')
+    p.add_argument('service_name', help="Name of the ROS service to echo (e.g. "
+                   "'/add_two_ints')")
+    p.add_argument('service_type', nargs='?', help="Type of the ROS service (e.g. "
+                   "'example_interfaces/srv/AddTwoInts')")
+    p.add_argument('--flow-style', action='store_true',
+                   help='Print collections in the block style (not available with csv format)')
 
 
 def _include_hidden(args: argparse.Namespace) -> bool:
@@ -73,13 +80,9 @@ def list_verb(args: argparse.Namespace) -> int:
 
 
 def _lookup(args: argparse.Namespace) -> list[str] | None:
-    from ros2cli_lite.api import cli_node, wait_for_graph
-    hidden = _include_hidden(args)
+    from ros2cli_lite.api import cli_node
     with cli_node() as node:
-        def types():
-            return dict(services(node, hidden)).get(args.service_name)
-        wait_for_graph(node, ready=lambda: types() is not None, settle=0.2)
-        return types()
+        return _lookup_in(node, args.service_name, _include_hidden(args))
 
 
 def type_verb(args: argparse.Namespace) -> int:
@@ -173,3 +176,60 @@ def _wait_for_service(client, started: float, timeout: float) -> bool:
             pass
         return True
     return client.wait_for_service(timeout_sec=max(0.0, started + timeout - time.monotonic()))
+
+
+EVENT_TYPES = {0: 'REQUEST_SENT', 1: 'REQUEST_RECEIVED', 2: 'RESPONSE_SENT',
+               3: 'RESPONSE_RECEIVED'}
+# How long echo lets discovery find the event publishers before saying there are none.
+ECHO_DISCOVERY = 2.0
+
+
+def echo_verb(args: argparse.Namespace) -> int | str:
+    from rclpy.qos import qos_profile_services_default
+
+    from ros2cli_lite.api import cli_node, import_type, message_to_ordered, spin_once, to_yaml
+    if args.service_type is not None:
+        try:
+            srv_type = import_type(args.service_type, 'srv')
+        except ValueError:
+            raise CliError(f"The service type '{args.service_type}' is invalid") from None
+    with cli_node() as node:
+        if args.service_type is None:
+            found = _lookup_in(node, args.service_name)
+            if found is None:
+                raise CliError(f"Could not load the type for the passed service: no service "
+                               f"'{args.service_name}' in the graph (see `ros2 service list`)")
+            try:
+                srv_type = import_type(found[0], 'srv')
+            except ValueError:
+                raise CliError(f"The service type '{found[0]}' is invalid") from None
+        if not hasattr(srv_type, 'Event'):
+            raise CliError(f"'{args.service_type}' is not a service type")
+        topic = args.service_name.rstrip('/') + '/_service_event'
+
+        def on_event(event) -> None:
+            data = message_to_ordered(event)
+            data['info']['event_type'] = EVENT_TYPES.get(data['info']['event_type'],
+                                                         data['info']['event_type'])
+            print(to_yaml(data, args.flow_style) + '---', flush=True)
+
+        subscription = node.create_subscription(srv_type.Event, topic, on_event,
+                                                qos_profile_services_default)
+        deadline = time.monotonic() + ECHO_DISCOVERY
+        while subscription.get_publisher_count() < 1 and time.monotonic() < deadline:
+            spin_once(node, 0.05)
+        if subscription.get_publisher_count() < 1:
+            print(f"No publishers on topic '{topic}'; is service introspection on the client "
+                  'or server enabled?', flush=True)
+        while True:
+            spin_once(node, 0.5)
+
+
+def _lookup_in(node, name: str, include_hidden: bool = True) -> list[str] | None:
+    """The types of service `name`, once discovered (None if it never shows up)."""
+    from ros2cli_lite.api import wait_for_graph
+
+    def types():
+        return dict(services(node, include_hidden)).get(name)
+    wait_for_graph(node, ready=lambda: types() is not None, settle=0.2)
+    return types()
