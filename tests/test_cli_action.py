@@ -13,7 +13,7 @@ pytestmark = rerun_once_for_discovery()
 ACTION = '/turtle1/rotate_absolute'
 TYPE = 'turtlesim/action/RotateAbsolute'
 GOAL_ID = r'[0-9a-f]{32}'
-NUMBER = r'-?\d+\.\d+(e-?\d+)?'
+NUMBER = r'-?\d+\.\d+(?:e-?\d+)?'
 
 
 @pytest.fixture(scope='module')

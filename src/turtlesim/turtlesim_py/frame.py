@@ -252,6 +252,8 @@ class TurtleFrame(RclcppParameters, Node):
     def _validate_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
         for parameter in parameters:
             reason = None
+            if parameter.type_ == Parameter.Type.NOT_SET:
+                continue  # `ros2 param delete`: rclpy refuses it for these static parameters
             if parameter.name.startswith('background_'):
                 value = parameter.value
                 if parameter.type_ != Parameter.Type.INTEGER:
