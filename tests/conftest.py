@@ -68,6 +68,14 @@ def module_launch(module_ros_env: dict[str, str], tmp_path_factory: pytest.TempP
         process.stop()
 
 
+@pytest.fixture(scope='module')
+def module_turtlesim(module_launch: Callable[..., RosProcess]) -> RosProcess:
+    """A headless turtlesim_node in module_ros_env, up to its first turtle."""
+    process = module_launch('turtlesim', 'turtlesim_node', '--headless')
+    process.wait_for_output(r'Spawning turtle \[turtle1\]')
+    return process
+
+
 @pytest.fixture
 def probe(domain: int) -> Iterator[TestNode]:
     node = TestNode(domain)

@@ -45,10 +45,8 @@ def dumped(background_r: int) -> str:
 
 
 @pytest.fixture(scope='module')
-def turtlesim(module_launch):
-    process = module_launch('turtlesim', 'turtlesim_node', '--headless')
-    process.wait_for_output(r'Spawning turtle \[turtle1\]')
-    return process
+def turtlesim(module_turtlesim):
+    return module_turtlesim
 
 
 @pytest.fixture(scope='module')
@@ -137,14 +135,16 @@ def test_dump_load_and_params_file_round_trip(module_ros_env, turtlesim, tmp_pat
                 'read-only' for name in (*QOS, 'start_type_description_service'))))
     check(ros2(env, 'param', 'get', '/turtlesim', 'background_r'), 'Integer value is: 150\n')
 
-    written = ros2(env, 'param', 'dump', '/turtlesim', '--output-dir', str(tmp_path / 'out'))
-    check(written, '', f"Output directory '{tmp_path / 'out'}' does not exist\n", 1)
-
     # A new turtlesim (its own domain) started from the dumped file has the saved values.
     fresh = launch('turtlesim', 'turtlesim_node', '--headless', '--ros-args', '--params-file',
                    str(saved))
     fresh.wait_for_output(r'Spawning turtle \[turtle1\]')
-    check(ros2(ros_env, 'param', 'dump', '/turtlesim'), dumped(150))
+    # Humble's --output-dir, kept for older instructions: the same YAML in <dir>/<node>.yaml.
+    out = tmp_path / 'out'
+    out.mkdir()
+    check(ros2(ros_env, 'param', 'dump', '/turtlesim', '--output-dir', str(out)),
+          f"Saving to:  {out / 'turtlesim.yaml'}\n")
+    assert (out / 'turtlesim.yaml').read_text() == dumped(150)[:-1]  # no print's blank line
 
 
 def test_load_and_delete_refuse_bad_input(module_ros_env, turtlesim, tmp_path):
@@ -167,3 +167,5 @@ def test_load_and_delete_refuse_bad_input(module_ros_env, turtlesim, tmp_path):
           'Deleting parameter failed: Static parameter cannot be undeclared\n')
     check(ros2(env, 'param', 'get', '/turtlesim', 'background_g'), 'Integer value is: 86\n')
     check(ros2(env, 'param', 'dump', '--spin-time', '1', '/nobody'), '', 'Node not found\n', 1)
+    check(ros2(env, 'param', 'dump', '/turtlesim', '--output-dir', str(tmp_path / 'nowhere')),
+          '', f"Output directory '{tmp_path / 'nowhere'}' does not exist\n", 1)

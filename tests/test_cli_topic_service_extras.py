@@ -21,10 +21,8 @@ NUMBER = r'\d+\.\d+'
 
 
 @pytest.fixture(scope='module')
-def turtlesim(module_launch):
-    process = module_launch('turtlesim', 'turtlesim_node', '--headless')
-    process.wait_for_output(r'Spawning turtle \[turtle1\]')
-    return process
+def turtlesim(module_turtlesim):
+    return module_turtlesim
 
 
 @pytest.fixture(scope='module')

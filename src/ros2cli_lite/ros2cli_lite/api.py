@@ -177,6 +177,15 @@ def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: f
         time.sleep(0.02)
 
 
+def print_names(names: list[str], count_only: bool) -> None:
+    """A `find` listing as ros2cli prints it: one name a line, or with -c only their number."""
+    if count_only:
+        print(len(names))
+    else:
+        for name in names:
+            print(name)
+
+
 def wait_until(predicate: Callable[[], bool], timeout: float, step: float = 0.02) -> bool:
     deadline = time.monotonic() + timeout
     while not predicate():

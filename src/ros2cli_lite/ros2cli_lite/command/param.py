@@ -224,13 +224,17 @@ def set_verb(args: argparse.Namespace) -> int | str:
         request = SetParameters.Request(
             parameters=[Parameter(name=args.parameter_name, value=value)])
         response = _call(node, SetParameters, f'{target}/set_parameters', request)
-    result = response.results[0]
-    if result.successful:
-        print('Set parameter successful' + (f': {result.reason}' if result.reason else ''))
-    else:
-        print('Setting parameter failed' + (f': {result.reason}' if result.reason else ''),
-              file=sys.stderr)
+    _print_result(response.results[0], 'Set parameter successful', 'Setting parameter failed')
     return 0
+
+
+def _print_result(result, success: str, failure: str) -> None:
+    """A SetParametersResult as ros2cli prints it: successes on stdout, failures on stderr."""
+    reason = f': {result.reason}' if result.reason else ''
+    if result.successful:
+        print(success + reason, flush=True)
+    else:
+        print(failure + reason, file=sys.stderr, flush=True)
 
 
 def describe_verb(args: argparse.Namespace) -> int | str:
@@ -278,6 +282,8 @@ def dump_verb(args: argparse.Namespace) -> int | str:
     from rclpy.parameter import parameter_value_to_python
 
     from ros2cli_lite.api import cli_node
+    if args.output_dir is not None and not os.path.isdir(args.output_dir):
+        return f"Output directory '{args.output_dir}' does not exist"
     with cli_node() as node:
         target = _find_node(node, args)
         if target is None:
@@ -294,8 +300,6 @@ def dump_verb(args: argparse.Namespace) -> int | str:
     if args.output_dir is None:
         print(text)
         return 0
-    if not os.path.isdir(args.output_dir):
-        return f"Output directory '{args.output_dir}' does not exist"
     path = os.path.join(args.output_dir, target.lstrip('/').replace('/', '__') + '.yaml')
     print(f'Saving to:  {path}')
     with open(path, 'w', encoding='utf-8') as output:
@@ -334,10 +338,8 @@ def load_verb(args: argparse.Namespace) -> int | str:
         response = _call(node, SetParameters, f'{target}/set_parameters',
                          SetParameters.Request(parameters=parameters))
     for parameter, result in zip(parameters, response.results, strict=False):
-        outcome = 'successful' if result.successful else 'failed'
-        line = f'Set parameter {parameter.name} {outcome}' + (
-            f': {result.reason}' if result.reason else '')
-        print(line, file=sys.stdout if result.successful else sys.stderr, flush=True)
+        _print_result(result, f'Set parameter {parameter.name} successful',
+                      f'Set parameter {parameter.name} failed')
     return 0
 
 
@@ -353,10 +355,6 @@ def delete_verb(args: argparse.Namespace) -> int | str:
         request = SetParameters.Request(
             parameters=[Parameter(name=args.parameter_name, value=ParameterValue())])
         response = _call(node, SetParameters, f'{target}/set_parameters', request)
-    result = response.results[0]
-    reason = f': {result.reason}' if result.reason else ''
-    if result.successful:
-        print('Deleted parameter successfully' + reason)
-    else:
-        print('Deleting parameter failed' + reason, file=sys.stderr)
+    _print_result(response.results[0], 'Deleted parameter successfully',
+                  'Deleting parameter failed')
     return 0

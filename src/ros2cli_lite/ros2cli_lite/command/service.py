@@ -95,16 +95,12 @@ def type_verb(args: argparse.Namespace) -> int:
 
 
 def find_verb(args: argparse.Namespace) -> int:
-    from ros2cli_lite.api import cli_node, wait_for_graph
+    from ros2cli_lite.api import cli_node, print_names, wait_for_graph
     with cli_node() as node:
         wait_for_graph(node)
         names = [name for name, types in services(node, _include_hidden(args))
                  if args.service_type in types]
-    if args.count_services:
-        print(len(names))
-    else:
-        for name in names:
-            print(name)
+    print_names(names, args.count_services)
     return 0
 
 

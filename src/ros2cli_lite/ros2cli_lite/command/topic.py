@@ -157,16 +157,12 @@ def type_verb(args: argparse.Namespace) -> int:
 
 
 def find_verb(args: argparse.Namespace) -> int:
-    from ros2cli_lite.api import cli_node, wait_for_graph
+    from ros2cli_lite.api import cli_node, print_names, wait_for_graph
     with cli_node() as node:
         wait_for_graph(node)
         names = [name for name, types in topics(node, _include_hidden(args))
                  if args.topic_type in types]
-    if args.count_topics:
-        print(len(names))
-    else:
-        for name in names:
-            print(name)
+    print_names(names, args.count_topics)
     return 0
 
 
@@ -373,7 +369,7 @@ def bw_verb(args: argparse.Namespace) -> int | str:
 
     from rclpy.qos import qos_profile_sensor_data
 
-    from ros2cli_lite.api import cli_node, spin_once
+    from ros2cli_lite.api import cli_node
     with cli_node() as node:
         msg_type = _wait_for_type(node, args.topic_name)
         clock = node.get_clock()
@@ -385,19 +381,15 @@ def bw_verb(args: argparse.Namespace) -> int | str:
         node.create_subscription(msg_type, args.topic_name, on_message,
                                  qos_profile_sensor_data, raw=True)
         print(f'Subscribed to [{args.topic_name}]', flush=True)
-        next_print = time.monotonic() + 1.0
-        while True:
-            spin_once(node, max(0.0, min(0.1, next_print - time.monotonic())))
-            if time.monotonic() < next_print:
-                continue
-            next_print += 1.0
+
+        def report() -> None:
             if len(window) < 2:
-                continue
+                return
             elapsed = (clock.now().nanoseconds - window[0][0]) * 1e-9
             if elapsed <= 0:
                 print('WARNING: time is reset!', file=sys.stderr)
                 window.clear()
-                continue
+                return
             sizes = [size for _, size in window]
             rate = sum(sizes) / elapsed
             scale = 1 if rate < 1e3 else 1e3 if rate < 1e6 else 1e6
@@ -406,6 +398,8 @@ def bw_verb(args: argparse.Namespace) -> int | str:
             print(f'{_size_text(rate, scale)}/s from {len(sizes)} messages\n'
                   f'\tMessage size mean: {mean} min: {low} max: {high}', flush=True)
 
+        _report_every_second(node, report)
+
 
 def delay_verb(args: argparse.Namespace) -> int | str:
     from collections import deque
@@ -413,7 +407,7 @@ def delay_verb(args: argparse.Namespace) -> int | str:
     from rclpy.qos import qos_profile_sensor_data
     from rclpy.time import Time
 
-    from ros2cli_lite.api import cli_node, spin_once, type_name
+    from ros2cli_lite.api import cli_node, type_name
     with cli_node() as node:
         msg_type = _wait_for_type(node, args.topic_name)
         if 'header' not in msg_type.get_fields_and_field_types():
@@ -432,17 +426,13 @@ def delay_verb(args: argparse.Namespace) -> int | str:
 
         node.create_subscription(msg_type, args.topic_name, on_message,
                                  qos_profile_sensor_data)
-        next_print = time.monotonic() + 1.0
-        while True:
-            spin_once(node, max(0.0, min(0.1, next_print - time.monotonic())))
-            if time.monotonic() < next_print:
-                continue
-            next_print += 1.0
+
+        def report() -> None:
             if not delays:
-                continue
+                return
             if received['count'] == received['printed']:
                 print('no new messages', flush=True)
-                continue
+                return
             received['printed'] = received['count']
             n = len(delays)
             mean = sum(delays) / n
@@ -450,3 +440,16 @@ def delay_verb(args: argparse.Namespace) -> int | str:
             print(f'average delay: {mean * 1e-9:.3f}\n\tmin: {min(delays) * 1e-9:.3f}s '
                   f'max: {max(delays) * 1e-9:.3f}s std dev: {std * 1e-9:.5f}s window: {n}',
                   flush=True)
+
+        _report_every_second(node, report)
+
+
+def _report_every_second(node, report) -> None:
+    """Spin `node` until Ctrl-C, calling report() once a second (ros2cli's 1 s timer)."""
+    from ros2cli_lite.api import spin_once
+    next_report = time.monotonic() + 1.0
+    while True:
+        spin_once(node, max(0.0, min(0.1, next_report - time.monotonic())))
+        if time.monotonic() >= next_report:
+            next_report += 1.0
+            report()
