@@ -89,6 +89,8 @@ def test_ctrl_c_cancels_the_goal(module_ros_env, turtlesim, tmp_path):
     ([TYPE, '{angle: 1.0}'], "Failed to populate field: 'angle' is not a field of "
                              'turtlesim/action/RotateAbsolute_Goal (fields: theta)\n'),
     ([TYPE, '[1, 2]'], 'The passed value needs to be a dictionary in YAML format\n'),
+    ([TYPE, '{theta: [}'], "The passed value is not valid YAML: expected the node content, "
+                           "but found '}' (line 1, column 10)\n"),
 ])
 def test_send_goal_refuses_bad_input(module_ros_env, args, error):
     # Checked before any node exists: nothing is sent.

@@ -298,7 +298,18 @@ def load_values(text: str) -> Any:
     try:
         return yaml.load(text, Loader=KeysAsStrings)
     except yaml.YAMLError as error:
-        raise CliError(f'The passed value is not valid YAML: {error}') from None
+        raise CliError(f'The passed value is not valid YAML: {yaml_problem(error)}') from None
+
+
+def yaml_problem(error: Any) -> str:
+    """A PyYAML error on one line: what is wrong and where (PyYAML spreads it over five)."""
+    problem = getattr(error, 'problem', None)
+    mark = getattr(error, 'problem_mark', None)
+    if not problem:
+        return ' '.join(str(error).split())
+    if mark is None:
+        return problem
+    return f'{problem} (line {mark.line + 1}, column {mark.column + 1})'
 
 
 INTEGER_RANGES = {

@@ -312,14 +312,14 @@ def _read_parameter_file(path: str, use_wildcard: bool) -> list:
     import yaml
     from rclpy.parameter import parameter_dict_from_yaml_file
 
-    from ros2cli_lite.api import CliError
+    from ros2cli_lite.api import CliError, yaml_problem
     if not os.path.isfile(path):
         raise CliError(f"Parameter file '{path}' does not exist")
     try:
         return list(parameter_dict_from_yaml_file(path, use_wildcard).values())
     except yaml.YAMLError as error:
         raise CliError(f"Parameter file '{path}' is not valid YAML: "
-                       f"{' '.join(str(error).split())}") from None
+                       f'{yaml_problem(error)}') from None
     except (RuntimeError, AttributeError, TypeError, ValueError) as error:
         raise CliError(f"Parameter file '{path}' is not a ROS parameter file "
                        "(expected '<node>: {ros__parameters: {name: value}}'): "
