@@ -54,7 +54,7 @@ def check(result, stdout, stderr='', code=0):
 def test_find(module_ros_env, turtlesim):
     check(ros2(module_ros_env, 'topic', 'find', 'turtlesim/msg/Pose'), '/turtle1/pose\n')
     check(ros2(module_ros_env, 'topic', 'find', '-c', 'geometry_msgs/msg/Twist'), '1\n')
-    check(ros2(module_ros_env, 'topic', 'find', 'std_msgs/msg/String'), '')
+    check(ros2(module_ros_env, 'topic', 'find', '--spin-time', '1', 'std_msgs/msg/String'), '')
 
 
 def test_bw_of_the_pose_topic(turtlesim, background):

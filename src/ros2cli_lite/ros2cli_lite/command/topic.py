@@ -159,9 +159,12 @@ def type_verb(args: argparse.Namespace) -> int:
 def find_verb(args: argparse.Namespace) -> int:
     from ros2cli_lite.api import cli_node, print_names, wait_for_graph
     with cli_node() as node:
-        wait_for_graph(node)
-        names = [name for name, types in topics(node, _include_hidden(args))
-                 if args.topic_type in types]
+        def matches() -> list[str]:
+            return [name for name, types in topics(node, _include_hidden(args))
+                    if args.topic_type in types]
+        # Looking for something: give discovery the longer bound until a match shows up.
+        wait_for_graph(node, ready=lambda: bool(matches()))
+        names = matches()
     print_names(names, args.count_topics)
     return 0
 
