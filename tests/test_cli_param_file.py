@@ -7,7 +7,7 @@ import subprocess
 
 import pytest
 
-from support import executable, rerun_once_for_discovery, ros2
+from support import executable, rerun_once_for_discovery, ros2, wait_until
 
 pytestmark = rerun_once_for_discovery()
 
@@ -53,10 +53,15 @@ def turtlesim(module_turtlesim):
 def teleop(module_ros_env, tmp_path_factory):
     """turtle_teleop_key on a pseudo-terminal, as a user starts it."""
     controller, terminal = pty.openpty()
-    log = open(tmp_path_factory.mktemp('teleop') / 'teleop.log', 'wb')
+    log_path = tmp_path_factory.mktemp('teleop') / 'teleop.log'
+    log = open(log_path, 'wb')
     process = subprocess.Popen([executable('turtlesim', 'turtle_teleop_key')],
                                env=module_ros_env, stdin=terminal, stdout=log,
                                stderr=subprocess.STDOUT, start_new_session=True)
+    # Its node exists once it prints the key help.
+    wait_until(lambda: 'Use arrow keys' in log_path.read_text() or process.poll() is not None,
+               20, 'turtle_teleop_key to start')
+    assert process.poll() is None, log_path.read_text()
     yield process
     os.write(controller, b'q')  # its own way out: restores the terminal and exits
     try:
