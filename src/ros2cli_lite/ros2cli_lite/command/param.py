@@ -38,9 +38,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     p.add_argument('node_name', help='Name of the ROS node')
     p.add_argument('parameter_name', help='Name of the parameter')
     p.add_argument('value', help='Value of the parameter')
-    p.add_argument('--timeout', metavar='N', type=int, default=1,
-                   help='Wait for N seconds until node becomes available (default %(default)s '
-                   'sec)')
+    _add_timeout(p)
     p = verb('describe', describe_verb, 'Show descriptive information about declared parameters')
     p.add_argument('node_name', help='Name of the ROS node')
     p.add_argument('parameter_names', nargs='+', help='Names of the parameters')
@@ -49,23 +47,23 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     p.add_argument('--output-dir', metavar='DIR', default=None,
                    help='Write the YAML to DIR/<node name>.yaml instead of standard output '
                    '(Humble\'s option; Jazzy removed it)')
-    p.add_argument('--timeout', metavar='N', type=int, default=1,
-                   help='Wait for N seconds until node becomes available (default %(default)s '
-                   'sec)')
+    _add_timeout(p)
     p = verb('load', load_verb, 'Load parameter file for a node')
     p.add_argument('node_name', help='Name of the ROS node')
     p.add_argument('parameter_file', help='Parameter file')
     p.add_argument('--no-use-wildcard', action='store_true',
                    help="Do not load parameters in the '/**' namespace into the node")
-    p.add_argument('--timeout', metavar='N', type=int, default=1,
-                   help='Wait for N seconds until node becomes available (default %(default)s '
-                   'sec)')
+    _add_timeout(p)
     p = verb('delete', delete_verb, 'Delete parameter')
     p.add_argument('node_name', help='Name of the ROS node')
     p.add_argument('parameter_name', help='Name of the parameter')
-    p.add_argument('--timeout', metavar='N', type=int, default=1,
-                   help='Wait for N seconds until node becomes available (default %(default)s '
-                   'sec)')
+    _add_timeout(p)
+
+
+def _add_timeout(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('--timeout', metavar='N', type=int, default=1,
+                        help='Wait for N seconds until node becomes available (default '
+                        '%(default)s sec)')
 
 
 def absolute(name: str | None) -> str | None:
