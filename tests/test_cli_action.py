@@ -35,6 +35,9 @@ def test_list_type_info(module_ros_env, turtlesim):
     check(ros2(env, 'action', 'info', '-t', ACTION),
           f'Action: {ACTION}\nAction clients: 0\nAction servers: 1\n    /turtlesim [{TYPE}]\n')
     check(ros2(env, 'action', 'type', '--spin-time', '1', '/nope'), '', '', 1)
+    check(ros2(env, 'action', 'info', 'bad name'), '',
+          "Invalid action name 'bad name': topic name must not contain characters other than "
+          "alphanumerics, '_', or '/'\n", 1)
 
 
 def test_send_goal_prints_jazzys_transcript(module_ros_env, turtlesim):

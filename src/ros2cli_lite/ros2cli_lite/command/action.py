@@ -121,7 +121,9 @@ def info_verb(args: argparse.Namespace) -> int | str:
     try:
         validate_full_topic_name(action)
     except InvalidTopicNameException as error:
-        return f"Invalid action name '{args.action_name}': {error}"
+        # rclpy's text: 'Invalid topic name: <why>:' then the name with a caret under it.
+        why = str(error).splitlines()[0].removeprefix('Invalid topic name: ').rstrip(':')
+        return f"Invalid action name '{args.action_name}': {why}"
     with cli_node() as node:
         wait_for_graph(node, ready=lambda: _types_of(node, action) is not None)
         clients, servers = action_clients_and_servers(node, action)
