@@ -141,8 +141,8 @@ def test_dump_load_and_params_file_round_trip(module_ros_env, turtlesim, tmp_pat
     check(ros2(env, 'param', 'get', '/turtlesim', 'background_r'), 'Integer value is: 150\n')
 
     # A new turtlesim (its own domain) started from the dumped file has the saved values.
-    fresh = launch('turtlesim', 'turtlesim_node', '--headless', '--ros-args', '--params-file',
-                   str(saved))
+    fresh = launch(argv=['ros2', 'run', 'turtlesim', 'turtlesim_node', '--headless',
+                         '--ros-args', '--params-file', str(saved)])
     fresh.wait_for_output(r'Spawning turtle \[turtle1\]')
     # Humble's --output-dir, kept for older instructions: the same YAML in <dir>/<node>.yaml.
     out = tmp_path / 'out'
