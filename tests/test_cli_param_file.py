@@ -7,7 +7,7 @@ import subprocess
 
 import pytest
 
-from support import executable, rerun_once_for_discovery, ros2, wait_until
+from support import TestNode, executable, rerun_once_for_discovery, ros2
 
 pytestmark = rerun_once_for_discovery()
 
@@ -58,9 +58,16 @@ def teleop(module_ros_env, tmp_path_factory):
     process = subprocess.Popen([executable('turtlesim', 'turtle_teleop_key')],
                                env=module_ros_env, stdin=terminal, stdout=log,
                                stderr=subprocess.STDOUT, start_new_session=True)
-    # Its node exists once it prints the key help.
-    wait_until(lambda: 'Use arrow keys' in log_path.read_text() or process.poll() is not None,
-               20, 'turtle_teleop_key to start')
+    # Ready once another participant sees its parameter services (a node only just started
+    # may be missing from a fresh `ros2` process's first look at the graph).
+    probe = TestNode(int(module_ros_env['ROS_DOMAIN_ID']))
+    try:
+        probe.spin_until(lambda: process.poll() is not None or any(
+            name == '/teleop_turtle/list_parameters'
+            for name, _ in probe.node.get_service_names_and_types()), 20,
+            'the teleop_turtle node')
+    finally:
+        probe.close()
     assert process.poll() is None, log_path.read_text()
     yield process
     os.write(controller, b'q')  # its own way out: restores the terminal and exits
