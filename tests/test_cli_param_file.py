@@ -90,11 +90,13 @@ def check(result, stdout, stderr='', code=0):
 
 
 def test_param_list_matches_rclcpp_nodes(module_ros_env, turtlesim, teleop):
-    check(ros2(module_ros_env, 'param', 'list'), lines(
-        '/teleop_turtle:', *(f'  {name}' for name in [
-            *QOS, 'scale_angular', 'scale_linear', 'start_type_description_service',
-            'use_sim_time']),
-        '/turtlesim:', *(f'  {name}' for name in [
+    # Node by node: `ros2 param list` alone lists what a fresh process has discovered, which
+    # without a daemon is now and then not every node yet (docs/cli.md).
+    check(ros2(module_ros_env, 'param', 'list', '/teleop_turtle'), lines(
+        *(f'  {name}' for name in [*QOS, 'scale_angular', 'scale_linear',
+                                   'start_type_description_service', 'use_sim_time'])))
+    check(ros2(module_ros_env, 'param', 'list', '/turtlesim'), lines(
+        *(f'  {name}' for name in [
             'background_b', 'background_g', 'background_r', 'holonomic', *QOS,
             'service_configure_introspection', 'start_type_description_service',
             'use_sim_time'])))
