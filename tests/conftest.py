@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
@@ -34,15 +35,14 @@ def ros_env(domain: int) -> Iterator[dict[str, str]]:
     stop_daemon(env)  # graph verbs start a daemon for the test's domain: leave none behind
 
 
-@pytest.fixture
-def launch(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Callable[..., RosProcess]]:
-    """launch('pkg', 'exe', *args) or launch(argv=[...]) starts a process; all stop at teardown."""
+@contextmanager
+def _launcher(ros_env: dict[str, str], directory: Path) -> Iterator[Callable[..., RosProcess]]:
     started: list[RosProcess] = []
 
     def start(package: str | None = None, name: str | None = None, *args: str,
               argv: list[str] | None = None, env: dict[str, str] | None = None) -> RosProcess:
         command = argv if argv is not None else [executable(package, name), *args]
-        log = tmp_path / f'{len(started):02d}-{Path(command[0]).name}.log'
+        log = directory / f'{len(started):02d}-{Path(command[0]).name}.log'
         process = RosProcess(command, env or ros_env, log)
         started.append(process)
         return process
@@ -50,6 +50,36 @@ def launch(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Callable[..., Ro
     yield start
     for process in reversed(started):
         process.stop()
+
+
+@pytest.fixture
+def launch(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Callable[..., RosProcess]]:
+    """launch('pkg', 'exe', *args) or launch(argv=[...]) starts a process; all stop at teardown."""
+    with _launcher(ros_env, tmp_path) as start:
+        yield start
+
+
+@pytest.fixture(scope='module')
+def module_ros_env() -> Iterator[dict[str, str]]:
+    """A domain and environment shared by the tests of one module (one turtlesim for all)."""
+    with leased_domain() as leased:
+        yield ros_environment(leased)
+
+
+@pytest.fixture(scope='module')
+def module_launch(module_ros_env: dict[str, str], tmp_path_factory: pytest.TempPathFactory
+                  ) -> Iterator[Callable[..., RosProcess]]:
+    """Like launch, in module_ros_env; the processes stop after the module's last test."""
+    with _launcher(module_ros_env, tmp_path_factory.mktemp('module_launch')) as start:
+        yield start
+
+
+@pytest.fixture(scope='module')
+def module_turtlesim(module_launch: Callable[..., RosProcess]) -> RosProcess:
+    """A headless turtlesim_node in module_ros_env, up to its first turtle."""
+    process = module_launch('turtlesim', 'turtlesim_node', '--headless')
+    process.wait_for_output(r'Spawning turtle \[turtle1\]')
+    return process
 
 
 @pytest.fixture

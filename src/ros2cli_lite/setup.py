@@ -19,7 +19,8 @@ setup(
     zip_safe=True,
     maintainer='Turtlesim Team',
     maintainer_email='team@turtles.example.com',
-    description='The ros2 command line (run, node, topic, service, interface, param) on rclpy.',
+    description='The ros2 command line (run, node, topic, service, action, interface, param) '
+                'on rclpy.',
     license='Apache-2.0',
     entry_points={
         'console_scripts': [

@@ -1,17 +1,53 @@
 """Serve /add_two_ints: answer each request with the sum of its two integers."""
 
 from example_interfaces.srv import AddTwoInts
+from rcl_interfaces.msg import SetParametersResult
+from rclpy.exceptions import InvalidParameterTypeException, InvalidParameterValueException
 from rclpy.node import Node
+from rclpy.parameter import Parameter
+from rclpy.qos import qos_profile_system_default
+from rclpy.service_introspection import ServiceIntrospectionState
 
 from my_robot_controller.int64 import INT64_RANGE, fits_int64
 from my_robot_controller.spinning import ros_session, spin_until_stopped
+
+# As ros2/demos' introspection_service: `ros2 param set /add_two_ints_server
+# service_configure_introspection contents` lets `ros2 service echo /add_two_ints` see calls.
+INTROSPECTION_PARAMETER = 'service_configure_introspection'
+INTROSPECTION_STATES = {'disabled': ServiceIntrospectionState.OFF,
+                        'metadata': ServiceIntrospectionState.METADATA,
+                        'contents': ServiceIntrospectionState.CONTENTS}
 
 
 class AddTwoIntsServer(Node):
     def __init__(self) -> None:
         super().__init__('add_two_ints_server')
-        self.create_service(AddTwoInts, 'add_two_ints', self.on_add_two_ints)
+        self.service = self.create_service(AddTwoInts, 'add_two_ints', self.on_add_two_ints)
+        self.add_on_set_parameters_callback(self.on_set_parameters)
+        self.add_post_set_parameters_callback(self.on_parameters_set)
+        try:
+            self.declare_parameter(INTROSPECTION_PARAMETER, 'disabled')
+        except (InvalidParameterValueException, InvalidParameterTypeException) as error:
+            self.get_logger().error(f'Ignoring the command-line value: {error}')
+            self.declare_parameter(INTROSPECTION_PARAMETER, 'disabled', ignore_override=True)
         self.get_logger().info('Ready to add two ints on /add_two_ints')
+
+    def on_set_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
+        for parameter in parameters:
+            if parameter.name == INTROSPECTION_PARAMETER and (
+                    parameter.type_ != Parameter.Type.STRING
+                    or parameter.value not in INTROSPECTION_STATES):
+                return SetParametersResult(
+                    successful=False, reason=f'{INTROSPECTION_PARAMETER} must be one of '
+                    f"{', '.join(INTROSPECTION_STATES)}, got {parameter.value!r}")
+        return SetParametersResult(successful=True)
+
+    def on_parameters_set(self, parameters: list[Parameter]) -> None:
+        for parameter in parameters:
+            if parameter.name == INTROSPECTION_PARAMETER:
+                self.service.configure_introspection(
+                    self.get_clock(), qos_profile_system_default,
+                    INTROSPECTION_STATES[parameter.value])
 
     def on_add_two_ints(self, request: AddTwoInts.Request,
                         response: AddTwoInts.Response) -> AddTwoInts.Response:

@@ -199,8 +199,6 @@ def _has_endpoints(node: Any, name: str, namespace: str) -> bool:
                     or node.get_service_names_and_types_by_node(name, namespace))
     except NodeNameNonExistentError:  # it left between listing the names and asking for this
         return False
-
-
 def wait_until(predicate: Callable[[], bool], timeout: float, step: float = 0.02) -> bool:
     deadline = time.monotonic() + timeout
     while not predicate():
@@ -263,7 +261,11 @@ def _dumper() -> Any:
         pass
 
     def represent_dict(dumper: Any, data: dict) -> Any:
-        return dumper.represent_mapping('tag:yaml.org,2002:map', data.items())
+        # A node without a flow style: mappings stay in block style even with flow_style
+        # (only sequences flow), as rosidl_runtime_py's message_to_yaml prints them.
+        return yaml.MappingNode('tag:yaml.org,2002:map', [
+            (dumper.represent_data(key), dumper.represent_data(value))
+            for key, value in data.items()])
 
     OrderedDumper.add_representer(dict, represent_dict)
     return OrderedDumper
@@ -309,7 +311,18 @@ def load_values(text: str) -> Any:
     try:
         return yaml.load(text, Loader=KeysAsStrings)
     except yaml.YAMLError as error:
-        raise CliError(f'The passed value is not valid YAML: {error}') from None
+        raise CliError(f'The passed value is not valid YAML: {yaml_problem(error)}') from None
+
+
+def yaml_problem(error: Any) -> str:
+    """A PyYAML error on one line: what is wrong and where (PyYAML spreads it over five)."""
+    problem = getattr(error, 'problem', None)
+    mark = getattr(error, 'problem_mark', None)
+    if not problem:
+        return ' '.join(str(error).split())
+    if mark is None:
+        return problem
+    return f'{problem} (line {mark.line + 1}, column {mark.column + 1})'
 
 
 INTEGER_RANGES = {
@@ -326,8 +339,14 @@ class FieldError(ValueError):
     pass
 
 
-def fill_message(msg: Any, values: Any, prefix: str = '') -> None:
-    """Set the fields of `msg` from a mapping, refusing anything the field cannot hold."""
+def fill_message(msg: Any, values: Any, prefix: str = '',
+                 stamps: list[Callable[[Any], None]] | None = None) -> None:
+    """Set the fields of `msg` from a mapping, refusing anything the field cannot hold.
+
+    With `stamps` (a list), a std_msgs/Header given as 'auto' and a builtin_interfaces/Time
+    given as 'now' are accepted (as `ros2 topic pub` does): a setter that stamps the field
+    with a given Time message is appended for each, to call before every publication.
+    """
     if not isinstance(values, dict):
         raise FieldError(f"'{prefix or type_name(type(msg))}' expects a mapping of field names "
                          f'to values, got {_show(values)}')
@@ -340,7 +359,7 @@ def fill_message(msg: Any, values: Any, prefix: str = '') -> None:
             raise FieldError(f"'{path}' is not a field of {type_name(type(msg))} "
                              f'(fields: {allowed})')
         current = getattr(msg, key)
-        setattr(msg, key, _convert(slot_types[key], value, current, path))
+        setattr(msg, key, _convert(slot_types[key], value, current, path, stamps))
 
 
 def _show(value: Any) -> str:
@@ -349,7 +368,8 @@ def _show(value: Any) -> str:
     return repr(value)
 
 
-def _convert(slot_type: Any, value: Any, current: Any, path: str) -> Any:
+def _convert(slot_type: Any, value: Any, current: Any, path: str,
+             stamps: list[Callable[[Any], None]] | None = None) -> Any:
     from rosidl_parser import definition as d
 
     if isinstance(slot_type, d.AbstractNestedType):
@@ -364,11 +384,16 @@ def _convert(slot_type: Any, value: Any, current: Any, path: str) -> Any:
         element = slot_type.value_type
         if isinstance(element, d.NamespacedType):
             cls = _namespaced_class(element)
-            return [_convert(element, v, cls(), f'{path}[{i}]') for i, v in enumerate(value)]
+            return [_convert(element, v, cls(), f'{path}[{i}]', stamps)
+                    for i, v in enumerate(value)]
         return [_convert(element, v, None, f'{path}[{i}]') for i, v in enumerate(value)]
     if isinstance(slot_type, d.NamespacedType):
         target = current if current is not None else _namespaced_class(slot_type)()
-        fill_message(target, value, prefix=f'{path}.')
+        stamp_setter = _stamp_setter(slot_type, value, target) if stamps is not None else None
+        if stamp_setter is not None:
+            stamps.append(stamp_setter)
+            return target
+        fill_message(target, value, prefix=f'{path}.', stamps=stamps)
         return target
     if isinstance(slot_type, (d.AbstractString, d.AbstractWString)):
         if not isinstance(value, str):
@@ -404,20 +429,37 @@ def _convert(slot_type: Any, value: Any, current: Any, path: str) -> Any:
     return value
 
 
+def _stamp_setter(slot_type: Any, value: Any, target: Any) -> Callable[[Any], None] | None:
+    """For Header 'auto' / Time 'now', a setter stamping `target` with a Time message."""
+    name = '/'.join((*slot_type.namespaces, slot_type.name))
+    if name == 'std_msgs/msg/Header' and value == 'auto':
+        def stamp_header(now: Any) -> None:
+            target.stamp = now
+        return stamp_header
+    if name == 'builtin_interfaces/msg/Time' and value == 'now':
+        def stamp_time(now: Any) -> None:
+            target.sec, target.nanosec = now.sec, now.nanosec
+        return stamp_time
+    return None
+
+
 def _namespaced_class(slot_type: Any) -> Any:
     module = importlib.import_module('.'.join(slot_type.namespaces))
     return getattr(module, slot_type.name)
 
 
-def populate(msg: Any, text: str) -> Any:
-    """Fill `msg` from a YAML mapping; CliError('Failed to populate field: ...') on bad input."""
+def populate(msg: Any, text: str, stamps: list[Callable[[Any], None]] | None = None) -> Any:
+    """Fill `msg` from a YAML mapping; CliError('Failed to populate field: ...') on bad input.
+
+    `stamps`: see fill_message.
+    """
     values = load_values(text)
     if values is None or values == '':
         values = {}
     if not isinstance(values, dict):
         raise CliError('The passed value needs to be a dictionary in YAML format')
     try:
-        fill_message(msg, values)
+        fill_message(msg, values, stamps=stamps)
     except FieldError as error:
         raise CliError(f'Failed to populate field: {error}') from None
     return msg

@@ -32,14 +32,19 @@ from turtlesim.srv import Kill, Spawn
 from turtlesim_py import sim
 from turtlesim_py.canvas import Canvas
 from turtlesim_py.canvas_stream import CanvasStream
+from turtlesim_py.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
 from turtlesim_py.turtle import Turtle
 
 BACKGROUND = (('background_r', 69, 'Red channel of the background color'),
               ('background_g', 86, 'Green channel of the background color'),
               ('background_b', 255, 'Blue channel of the background color'))
 INTROSPECTION = {'off': ServiceIntrospectionState.OFF,
+                 'disabled': ServiceIntrospectionState.OFF,
                  'metadata': ServiceIntrospectionState.METADATA,
                  'contents': ServiceIntrospectionState.CONTENTS}
+# The parameter of ros2/demos' introspection_service (`ros2 service echo` needs it on).
+INTROSPECTION_PARAMETER = 'service_configure_introspection'
+INTROSPECTION_VALUES = ('disabled', 'metadata', 'contents')
 # A turtle name becomes a relative name prefix (`<name>/cmd_vel`): tokens of letters, digits
 # and underscores, not starting with a digit, no repeated underscores (ROS name rules).
 NAME_TOKEN = r'[A-Za-z_][A-Za-z0-9_]*'
@@ -82,13 +87,14 @@ def turtle_name_problem(name: str) -> str | None:
     return None
 
 
-class TurtleFrame(Node):
+class TurtleFrame(RclcppParameters, Node):
     def __init__(self, *, canvas_png: str = 'turtlesim_canvas.png', fixed_step: bool = False,
                  introspection: str = 'off') -> None:
         super().__init__('turtlesim')
         self.canvas_png = Path(canvas_png).absolute()
         self.fixed_step = fixed_step
         self.introspection = INTROSPECTION[introspection]
+        self._introspection_used = False
         # One lock for all simulation state: the tick runs on its own thread (see start()),
         # the executor's callbacks on the spinning thread, the window paints from Qt's.
         self.lock = threading.RLock()
@@ -115,9 +121,17 @@ class TurtleFrame(Node):
             type=ParameterType.PARAMETER_BOOL,
             description='If true, then turtles will be holonomic'))
         self._holonomic = bool(self.get_parameter('holonomic').value)
+        # --service-introspection gives the default; the parameter can change it at any time.
+        self._declare(INTROSPECTION_PARAMETER,
+                      'disabled' if introspection == 'off' else introspection,
+                      ParameterDescriptor(type=ParameterType.PARAMETER_STRING,
+                                          description='Service introspection of every service: '
+                                          'disabled, metadata or contents'))
+        self.introspection = INTROSPECTION[self.get_parameter(INTROSPECTION_PARAMETER).value]
         self.add_post_set_parameters_callback(self._parameters_set)
         self.create_subscription(ParameterEvent, '/parameter_events', self._on_parameter_event,
                                  PARAMETER_EVENT_QOS)
+        declare_rclcpp_parameters(self, subscribe_parameter_events=False)
 
         # Deeper request queues than the default 10: a burst of 200 spawn calls sent at once
         # would otherwise lose all but the last few requests inside DDS.
@@ -194,8 +208,9 @@ class TurtleFrame(Node):
 
     # ---------------------------------------------------------------- helpers
     def configure_introspection(self, service: Service) -> None:
-        if self.introspection == ServiceIntrospectionState.OFF:
-            return
+        if self.introspection == ServiceIntrospectionState.OFF and not self._introspection_used:
+            return  # never switched on: nothing to switch off
+        self._introspection_used = True
         try:
             service.configure_introspection(self.get_clock(), qos_profile_services_default,
                                             self.introspection)
@@ -241,6 +256,8 @@ class TurtleFrame(Node):
     def _validate_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
         for parameter in parameters:
             reason = None
+            if parameter.type_ == Parameter.Type.NOT_SET:
+                continue  # `ros2 param delete`: rclpy refuses it for these static parameters
             if parameter.name.startswith('background_'):
                 value = parameter.value
                 if parameter.type_ != Parameter.Type.INTEGER:
@@ -248,6 +265,11 @@ class TurtleFrame(Node):
                               f'got {parameter.type_.name.lower()} {value!r}')
                 elif not 0 <= value <= 255:
                     reason = f'parameter {parameter.name} must be an integer in 0..255, got {value}'
+            elif parameter.name == INTROSPECTION_PARAMETER and (
+                    parameter.type_ != Parameter.Type.STRING
+                    or parameter.value not in INTROSPECTION_VALUES):
+                reason = (f'parameter {INTROSPECTION_PARAMETER} must be one of '
+                          f"{', '.join(INTROSPECTION_VALUES)}, got {parameter.value!r}")
             elif parameter.name == 'holonomic' and parameter.type_ != Parameter.Type.BOOL:
                 reason = (f'parameter holonomic must be a bool (true or false), '
                           f'got {parameter.type_.name.lower()} {parameter.value!r}')
@@ -260,6 +282,11 @@ class TurtleFrame(Node):
         for parameter in parameters:
             if parameter.name == 'holonomic':
                 self._holonomic = bool(parameter.value)
+            elif parameter.name == INTROSPECTION_PARAMETER:
+                with self.lock:
+                    self.introspection = INTROSPECTION[parameter.value]
+                    for service in self.services:
+                        self.configure_introspection(service)
 
     def _on_parameter_event(self, event: ParameterEvent) -> None:
         if event.node == self.get_fully_qualified_name():

@@ -17,6 +17,7 @@ from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
 from turtlesim.action import RotateAbsolute
 
+from turtlesim_py.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
 from turtlesim_py.turtle import TOPIC_QOS
 
 INSTRUCTIONS = (
@@ -81,11 +82,12 @@ class RawTerminal:
             termios.tcsetattr(self.fd, termios.TCSANOW, self.saved)
 
 
-class TeleopTurtle(Node):
+class TeleopTurtle(RclcppParameters, Node):
     def __init__(self) -> None:
         super().__init__('teleop_turtle')
         self.declare_parameter('scale_linear', 2.0)
         self.declare_parameter('scale_angular', 2.0)
+        declare_rclcpp_parameters(self)
         self.twist_pub = self.create_publisher(Twist, 'turtle1/cmd_vel', TOPIC_QOS)
         self.rotate_client = ActionClient(self, RotateAbsolute, 'turtle1/rotate_absolute')
         self.goal_handle = None

@@ -1,8 +1,10 @@
-"""ros2 param: list, get, set, describe (through the node's rcl_interfaces services)."""
+"""ros2 param: list, get, set, describe, dump, load, delete (through the node's rcl_interfaces
+services)."""
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
 from ros2cli_lite.api import add_graph_verb
@@ -36,12 +38,32 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     p.add_argument('node_name', help='Name of the ROS node')
     p.add_argument('parameter_name', help='Name of the parameter')
     p.add_argument('value', help='Value of the parameter')
-    p.add_argument('--timeout', metavar='N', type=int, default=1,
-                   help='Wait for N seconds until node becomes available (default %(default)s '
-                   'sec)')
+    _add_timeout(p)
     p = verb('describe', describe_verb, 'Show descriptive information about declared parameters')
     p.add_argument('node_name', help='Name of the ROS node')
     p.add_argument('parameter_names', nargs='+', help='Names of the parameters')
+    p = verb('dump', dump_verb, 'Show all of the parameters of a node in a YAML file format')
+    p.add_argument('node_name', help='Name of the ROS node')
+    p.add_argument('--output-dir', metavar='DIR', default=None,
+                   help='Write the YAML to DIR/<node name>.yaml instead of standard output '
+                   '(Humble\'s option; Jazzy removed it)')
+    _add_timeout(p)
+    p = verb('load', load_verb, 'Load parameter file for a node')
+    p.add_argument('node_name', help='Name of the ROS node')
+    p.add_argument('parameter_file', help='Parameter file')
+    p.add_argument('--no-use-wildcard', action='store_true',
+                   help="Do not load parameters in the '/**' namespace into the node")
+    _add_timeout(p)
+    p = verb('delete', delete_verb, 'Delete parameter')
+    p.add_argument('node_name', help='Name of the ROS node')
+    p.add_argument('parameter_name', help='Name of the parameter')
+    _add_timeout(p)
+
+
+def _add_timeout(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('--timeout', metavar='N', type=int, default=1,
+                        help='Wait for N seconds until node becomes available (default '
+                        '%(default)s sec)')
 
 
 def absolute(name: str | None) -> str | None:
@@ -204,13 +226,17 @@ def set_verb(args: argparse.Namespace) -> int | str:
         request = SetParameters.Request(
             parameters=[Parameter(name=args.parameter_name, value=value)])
         response = _call(node, SetParameters, f'{target}/set_parameters', request)
-    result = response.results[0]
-    if result.successful:
-        print('Set parameter successful' + (f': {result.reason}' if result.reason else ''))
-    else:
-        print('Setting parameter failed' + (f': {result.reason}' if result.reason else ''),
-              file=sys.stderr)
+    _print_result(response.results[0], 'Set parameter successful', 'Setting parameter failed')
     return 0
+
+
+def _print_result(result, success: str, failure: str) -> None:
+    """A SetParametersResult as ros2cli prints it: successes on stdout, failures on stderr."""
+    reason = f': {result.reason}' if result.reason else ''
+    if result.successful:
+        print(success + reason, flush=True)
+    else:
+        print(failure + reason, file=sys.stderr, flush=True)
 
 
 def describe_verb(args: argparse.Namespace) -> int | str:
@@ -240,4 +266,97 @@ def describe_verb(args: argparse.Namespace) -> int | str:
                     print('    Step:', ranges[0].step)
             if descriptor.additional_constraints:
                 print('    Additional constraints:', descriptor.additional_constraints)
+    return 0
+
+
+def _insert(tree: dict, name: str, value) -> None:
+    """Nest a dotted parameter name as ros2cli's dump does: 'a.b.c' -> {a: {b: {c: value}}}."""
+    head, dot, rest = name.partition('.')
+    if dot:
+        _insert(tree.setdefault(head, {}), rest, value)
+    else:
+        tree[name] = value
+
+
+def dump_verb(args: argparse.Namespace) -> int | str:
+    import yaml
+    from rcl_interfaces.srv import GetParameters, ListParameters
+    from rclpy.parameter import parameter_value_to_python
+
+    from ros2cli_lite.api import cli_node
+    if args.output_dir is not None and not os.path.isdir(args.output_dir):
+        return f"Output directory '{args.output_dir}' does not exist"
+    with cli_node() as node:
+        target = _find_node(node, args)
+        if target is None:
+            return 'Node not found'
+        listed = _call(node, ListParameters, f'{target}/list_parameters',
+                       ListParameters.Request())
+        names = sorted(listed.result.names)
+        got = _call(node, GetParameters, f'{target}/get_parameters',
+                    GetParameters.Request(names=names))
+    parameters: dict = {}
+    for name, value in zip(names, got.values, strict=False):
+        _insert(parameters, name, parameter_value_to_python(value))
+    text = yaml.dump({target: {'ros__parameters': parameters}}, default_flow_style=False)
+    if args.output_dir is None:
+        print(text)
+        return 0
+    path = os.path.join(args.output_dir, target.lstrip('/').replace('/', '__') + '.yaml')
+    print(f'Saving to:  {path}')
+    with open(path, 'w', encoding='utf-8') as output:
+        output.write(text)
+    return 0
+
+
+def _read_parameter_file(path: str, use_wildcard: bool) -> list:
+    """The rcl_interfaces Parameters of a params file, in file order; CliError if unusable."""
+    import yaml
+    from rclpy.parameter import parameter_dict_from_yaml_file
+
+    from ros2cli_lite.api import CliError, yaml_problem
+    if not os.path.isfile(path):
+        raise CliError(f"Parameter file '{path}' does not exist")
+    try:
+        return list(parameter_dict_from_yaml_file(path, use_wildcard).values())
+    except yaml.YAMLError as error:
+        raise CliError(f"Parameter file '{path}' is not valid YAML: "
+                       f'{yaml_problem(error)}') from None
+    except (RuntimeError, AttributeError, TypeError, ValueError) as error:
+        raise CliError(f"Parameter file '{path}' is not a ROS parameter file "
+                       "(expected '<node>: {ros__parameters: {name: value}}'): "
+                       f'{error}') from None
+
+
+def load_verb(args: argparse.Namespace) -> int | str:
+    from rcl_interfaces.srv import SetParameters
+
+    from ros2cli_lite.api import cli_node
+    parameters = _read_parameter_file(args.parameter_file, not args.no_use_wildcard)
+    with cli_node() as node:
+        target = _find_node(node, args)
+        if target is None:
+            return 'Node not found'
+        response = _call(node, SetParameters, f'{target}/set_parameters',
+                         SetParameters.Request(parameters=parameters))
+    for parameter, result in zip(parameters, response.results, strict=False):
+        _print_result(result, f'Set parameter {parameter.name} successful',
+                      f'Set parameter {parameter.name} failed')
+    return 0
+
+
+def delete_verb(args: argparse.Namespace) -> int | str:
+    from rcl_interfaces.msg import Parameter, ParameterValue
+    from rcl_interfaces.srv import SetParameters
+
+    from ros2cli_lite.api import cli_node
+    with cli_node() as node:
+        target = _find_node(node, args)
+        if target is None:
+            return 'Node not found'
+        request = SetParameters.Request(
+            parameters=[Parameter(name=args.parameter_name, value=ParameterValue())])
+        response = _call(node, SetParameters, f'{target}/set_parameters', request)
+    _print_result(response.results[0], 'Deleted parameter successfully',
+                  'Deleting parameter failed')
     return 0

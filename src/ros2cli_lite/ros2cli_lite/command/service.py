@@ -1,4 +1,4 @@
-"""ros2 service: list, type, find, info, call."""
+"""ros2 service: list, type, find, info, call, echo."""
 
 from __future__ import annotations
 
@@ -48,6 +48,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     p.add_argument('--timeout', metavar='S', type=float, default=5.0,
                    help='Give up when the service is not available within S seconds '
                    '(default: %(default)s; 0 or less waits forever)')
+    p = verb('echo', echo_verb, 'Echo a service')
+    p.add_argument('service_name', help="Name of the ROS service to echo (e.g. "
+                   "'/add_two_ints')")
+    p.add_argument('service_type', nargs='?', help="Type of the ROS service (e.g. "
+                   "'example_interfaces/srv/AddTwoInts')")
+    p.add_argument('--flow-style', action='store_true',
+                   help='Print collections in the block style (not available with csv format)')
 
 
 def _include_hidden(args: argparse.Namespace) -> bool:
@@ -155,3 +162,48 @@ def _wait_for_service(client, started: float, timeout: float) -> bool:
             pass
         return True
     return client.wait_for_service(timeout_sec=max(0.0, started + timeout - time.monotonic()))
+
+
+EVENT_TYPES = {0: 'REQUEST_SENT', 1: 'REQUEST_RECEIVED', 2: 'RESPONSE_SENT',
+               3: 'RESPONSE_RECEIVED'}
+# How long echo lets discovery find the event publishers before saying there are none.
+ECHO_DISCOVERY = 2.0
+
+
+def echo_verb(args: argparse.Namespace) -> int | str:
+    from rclpy.qos import qos_profile_services_default
+
+    from ros2cli_lite.api import cli_node, import_type, message_to_ordered, spin_once, to_yaml
+    type_name = args.service_type
+    if type_name is None:
+        found, _ = _lookup(args)
+        if found is None:
+            raise CliError(f"Could not load the type for the passed service: no service "
+                           f"'{args.service_name}' in the graph (see `ros2 service list`)")
+        type_name = found[0]
+    try:
+        srv_type = import_type(type_name, 'srv')
+    except ValueError:
+        raise CliError(f"The service type '{type_name}' is invalid") from None
+    if not hasattr(srv_type, 'Event'):
+        raise CliError(f"'{type_name}' is not a service type")
+    with cli_node() as node:
+        topic = args.service_name.rstrip('/') + '/_service_event'
+
+        def on_event(event) -> None:
+            data = message_to_ordered(event)
+            data['info']['event_type'] = EVENT_TYPES.get(data['info']['event_type'],
+                                                         data['info']['event_type'])
+            print(to_yaml(data, args.flow_style) + '---', flush=True)
+
+        subscription = node.create_subscription(srv_type.Event, topic, on_event,
+                                                qos_profile_services_default)
+        deadline = time.monotonic() + ECHO_DISCOVERY
+        while subscription.get_publisher_count() < 1 and time.monotonic() < deadline:
+            spin_once(node, 0.05)
+        if subscription.get_publisher_count() < 1:
+            print(f"No publishers on topic '{topic}'; is service introspection on the client "
+                  'or server enabled?', flush=True)
+        while True:
+            spin_once(node, 0.5)
+

@@ -1,4 +1,4 @@
-"""ros2 topic: list, type, find, info, echo, pub, hz."""
+"""ros2 topic: list, type, find, info, echo, pub, hz, bw, delay."""
 
 from __future__ import annotations
 
@@ -77,8 +77,27 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     p.add_argument('-n', '--node-name', help='Name of the created publishing node')
     p = verb('hz', hz_verb, 'Print the average publishing rate to screen')
     p.add_argument('topic_name', help="Name of the ROS topic to listen to (e.g. '/chatter')")
-    p.add_argument('--window', '-w', type=int, default=10000,
+    p.add_argument('--window', '-w', type=_positive_int, default=10000,
                    help='window size, in # of messages, for calculating rate (default: 10000)')
+    p = verb('bw', bw_verb, 'Display bandwidth used by topic')
+    p.add_argument('topic_name', help='Topic name to monitor for bandwidth utilization')
+    p.add_argument('--window', '-w', type=_positive_int, default=100, metavar='WINDOW',
+                   help='maximum window size, in # of messages, for calculating rate '
+                   '(default: 100)')
+    p = verb('delay', delay_verb, 'Display delay of topic from timestamp in header')
+    p.add_argument('topic_name', help='Topic name to calculate the delay for')
+    p.add_argument('--window', '-w', type=_positive_int, default=10000,
+                   help='window size, in # of messages, for calculating rate (default: 10000)')
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f'value must be a positive integer, got {text!r}')
+    return value
 
 
 def _include_hidden(args: argparse.Namespace) -> bool:
@@ -245,7 +264,8 @@ def pub_verb(args: argparse.Namespace) -> int | str:
         return 'The passed message type is invalid'
     if args.rate <= 0:
         return 'rate must be greater than zero'
-    msg = populate(msg_type(), args.values)
+    stamps: list = []  # fields given as `header: auto` / `stamp: now`, set at each publication
+    msg = populate(msg_type(), args.values, stamps)
     times = 1 if args.once else args.times
     wait_for = args.wait_matching_subscriptions
     if wait_for is None:
@@ -268,6 +288,10 @@ def pub_verb(args: argparse.Namespace) -> int | str:
         period = 1.0 / args.rate
         next_time = time.monotonic()
         while True:
+            if stamps:
+                now = node.get_clock().now().to_msg()
+                for stamp in stamps:
+                    stamp(now)
             publisher.publish(msg)
             count += 1
             if args.print and count % args.print == 0:
@@ -283,21 +307,30 @@ def pub_verb(args: argparse.Namespace) -> int | str:
     return 0
 
 
+def _wait_for_type(node, topic: str):
+    """The message class of `topic`, waiting (with one warning) until it is published."""
+    from ros2cli_lite.api import CliError, import_type, spin_once
+    found = _lookup(node, topic, True, settle=0.2)
+    warned = False
+    while found is None:
+        if not warned:
+            print(f'WARNING: topic [{topic}] does not appear to be published yet',
+                  file=sys.stderr)
+            warned = True
+        spin_once(node, 0.2)
+        found = dict(topics(node, True)).get(topic)
+    try:
+        return import_type(found[0], 'msg')
+    except ValueError:
+        raise CliError(f"The message type '{found[0]}' is invalid") from None
+
+
 def hz_verb(args: argparse.Namespace) -> int | str:
     from rclpy.qos import qos_profile_sensor_data
 
-    from ros2cli_lite.api import cli_node, import_type, spin_once
+    from ros2cli_lite.api import cli_node, spin_once
     with cli_node() as node:
-        found = _lookup(node, args.topic_name, True, settle=0.2)
-        warned = False
-        while found is None:
-            if not warned:
-                print(f'WARNING: topic [{args.topic_name}] does not appear to be published yet',
-                      file=sys.stderr)
-                warned = True
-            spin_once(node, 0.2)
-            found = dict(topics(node, True)).get(args.topic_name)
-        msg_type = import_type(found[0], 'msg')
+        msg_type = _wait_for_type(node, args.topic_name)
         stamps: list[float] = []
 
         def callback(_msg) -> None:
@@ -325,3 +358,98 @@ def hz_verb(args: argparse.Namespace) -> int | str:
                   f'{max(deltas):.3f}s std dev: {std:.5f}s window: {n + 1}', flush=True)
 
 
+def _size_text(count: float, scale: float) -> str:
+    if scale == 1:
+        return f'{count:.0f} B'
+    return f'{count / scale:.2f} {"KB" if scale == 1e3 else "MB"}'
+
+
+def bw_verb(args: argparse.Namespace) -> int | str:
+    from collections import deque
+
+    from rclpy.qos import qos_profile_sensor_data
+
+    from ros2cli_lite.api import cli_node
+    with cli_node() as node:
+        msg_type = _wait_for_type(node, args.topic_name)
+        clock = node.get_clock()
+        window: deque[tuple[int, int]] = deque(maxlen=args.window)  # (ns received, bytes)
+
+        def on_message(data: bytes) -> None:
+            window.append((clock.now().nanoseconds, len(data)))
+
+        node.create_subscription(msg_type, args.topic_name, on_message,
+                                 qos_profile_sensor_data, raw=True)
+        print(f'Subscribed to [{args.topic_name}]', flush=True)
+
+        def report() -> None:
+            if len(window) < 2:
+                return
+            elapsed = (clock.now().nanoseconds - window[0][0]) * 1e-9
+            if elapsed <= 0:
+                print('WARNING: time is reset!', file=sys.stderr)
+                window.clear()
+                return
+            sizes = [size for _, size in window]
+            rate = sum(sizes) / elapsed
+            scale = 1 if rate < 1e3 else 1e3 if rate < 1e6 else 1e6
+            mean, low, high = (_size_text(v, scale) for v in
+                               (sum(sizes) / len(sizes), min(sizes), max(sizes)))
+            print(f'{_size_text(rate, scale)}/s from {len(sizes)} messages\n'
+                  f'\tMessage size mean: {mean} min: {low} max: {high}', flush=True)
+
+        _report_every_second(node, report)
+
+
+def delay_verb(args: argparse.Namespace) -> int | str:
+    from collections import deque
+
+    from rclpy.qos import qos_profile_sensor_data
+    from rclpy.time import Time
+
+    from ros2cli_lite.api import cli_node, type_name
+    with cli_node() as node:
+        msg_type = _wait_for_type(node, args.topic_name)
+        if 'header' not in msg_type.get_fields_and_field_types():
+            return (f'{type_name(msg_type)} has no header: the delay is measured from '
+                    'header.stamp (use a stamped type, e.g. geometry_msgs/msg/TwistStamped)')
+        clock = node.get_clock()
+        delays: deque[int] = deque(maxlen=args.window)
+        received = {'count': 0, 'printed': 0}
+
+        def on_message(msg) -> None:
+            now = clock.now()
+            if now.nanoseconds == 0:  # simulated time not started yet
+                return
+            delays.append((now - Time.from_msg(msg.header.stamp)).nanoseconds)
+            received['count'] += 1
+
+        node.create_subscription(msg_type, args.topic_name, on_message,
+                                 qos_profile_sensor_data)
+
+        def report() -> None:
+            if not delays:
+                return
+            if received['count'] == received['printed']:
+                print('no new messages', flush=True)
+                return
+            received['printed'] = received['count']
+            n = len(delays)
+            mean = sum(delays) / n
+            std = math.sqrt(sum((d - mean) ** 2 for d in delays) / n)
+            print(f'average delay: {mean * 1e-9:.3f}\n\tmin: {min(delays) * 1e-9:.3f}s '
+                  f'max: {max(delays) * 1e-9:.3f}s std dev: {std * 1e-9:.5f}s window: {n}',
+                  flush=True)
+
+        _report_every_second(node, report)
+
+
+def _report_every_second(node, report) -> None:
+    """Spin `node` until Ctrl-C, calling report() once a second (ros2cli's 1 s timer)."""
+    from ros2cli_lite.api import spin_once
+    next_report = time.monotonic() + 1.0
+    while True:
+        spin_once(node, max(0.0, min(0.1, next_report - time.monotonic())))
+        if time.monotonic() >= next_report:
+            next_report += 1.0
+            report()

@@ -1,0 +1,54 @@
+"""What the C++ turtlesim nodes show the graph because rclcpp made them, added to rclpy nodes.
+
+Every rclcpp node declares read-only `qos_overrides./parameter_events.publisher.*` parameters
+(the QoS of its /parameter_events publisher) and subscribes to /parameter_events; rclpy
+nodes do neither. The tutorials' `ros2 param list`, `param dump`, `param load` and `ros2 node
+info` listings show them, so our turtlesim and teleop declare them too, with rclcpp's values
+and rclcpp's refusal text for a read-only parameter.
+"""
+
+from __future__ import annotations
+
+from rcl_interfaces.msg import ParameterDescriptor, ParameterEvent, SetParametersResult
+from rclpy.exceptions import InvalidParameterTypeException, InvalidParameterValueException
+from rclpy.node import Node
+from rclpy.qos import qos_profile_parameter_events
+
+PREFIX = 'qos_overrides./parameter_events.publisher.'
+# rclpy's /parameter_events publisher uses exactly this profile, as rclcpp's does.
+PARAMETER_EVENT_QOS_VALUES = (
+    ('depth', qos_profile_parameter_events.depth),
+    ('durability', 'volatile'),
+    ('history', 'keep_last'),
+    ('reliability', 'reliable'),
+)
+
+
+class RclcppParameters:
+    """Mixin for a Node: a refused read-only parameter reads as rclcpp words it."""
+
+    def _apply_descriptors(self, parameter_list, descriptors, check_read_only=True):
+        if check_read_only:
+            for parameter in parameter_list:
+                descriptor = descriptors.get(parameter.name)
+                if descriptor is not None and descriptor.read_only:
+                    return SetParametersResult(
+                        successful=False, reason=f"parameter '{parameter.name}' cannot be set "
+                        'because it is read-only')
+        return super()._apply_descriptors(parameter_list, descriptors, check_read_only)
+
+
+def declare_rclcpp_parameters(node: Node, subscribe_parameter_events: bool = True) -> None:
+    """Declare the qos_overrides parameters (a params file may set them at start-up, as in
+    rclcpp) and, unless the node has its own, a /parameter_events subscription."""
+    for name, default in PARAMETER_EVENT_QOS_VALUES:
+        descriptor = ParameterDescriptor(read_only=True)
+        try:
+            node.declare_parameter(PREFIX + name, default, descriptor)
+        except (InvalidParameterValueException, InvalidParameterTypeException):
+            node.get_logger().error(f'Ignoring the command-line value of {PREFIX}{name}; '
+                                    f'using the default {default!r}')
+            node.declare_parameter(PREFIX + name, default, descriptor, ignore_override=True)
+    if subscribe_parameter_events:
+        node.create_subscription(ParameterEvent, '/parameter_events', lambda _event: None,
+                                 qos_profile_parameter_events)
