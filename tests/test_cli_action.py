@@ -6,9 +6,7 @@ import signal
 
 import pytest
 
-from support import RosProcess, rerun_once_for_discovery, ros2
-
-pytestmark = rerun_once_for_discovery()
+from support import RosProcess, ros2
 
 ACTION = '/turtle1/rotate_absolute'
 TYPE = 'turtlesim/action/RotateAbsolute'

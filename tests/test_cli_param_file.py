@@ -7,9 +7,7 @@ import subprocess
 
 import pytest
 
-from support import TestNode, executable, rerun_once_for_discovery, ros2
-
-pytestmark = rerun_once_for_discovery()
+from support import TestNode, executable, ros2
 
 QOS = [f'qos_overrides./parameter_events.publisher.{name}'
        for name in ('depth', 'durability', 'history', 'reliability')]

@@ -10,12 +10,9 @@ from support import (
     RosProcess,
     TestNode,
     interface_type,
-    rerun_once_for_discovery,
     ros2,
     wait_until,
 )
-
-pytestmark = rerun_once_for_discovery()
 
 NUMBER = r'\d+\.\d+'
 

@@ -286,10 +286,10 @@ def dump_verb(args: argparse.Namespace) -> int | str:
     from ros2cli_lite.api import cli_node
     if args.output_dir is not None and not os.path.isdir(args.output_dir):
         return f"Output directory '{args.output_dir}' does not exist"
+    target = _find_node(args)
+    if target is None:
+        return 'Node not found'
     with cli_node() as node:
-        target = _find_node(node, args)
-        if target is None:
-            return 'Node not found'
         listed = _call(node, ListParameters, f'{target}/list_parameters',
                        ListParameters.Request())
         names = sorted(listed.result.names)
@@ -333,10 +333,10 @@ def load_verb(args: argparse.Namespace) -> int | str:
 
     from ros2cli_lite.api import cli_node
     parameters = _read_parameter_file(args.parameter_file, not args.no_use_wildcard)
+    target = _find_node(args)
+    if target is None:
+        return 'Node not found'
     with cli_node() as node:
-        target = _find_node(node, args)
-        if target is None:
-            return 'Node not found'
         response = _call(node, SetParameters, f'{target}/set_parameters',
                          SetParameters.Request(parameters=parameters))
     for parameter, result in zip(parameters, response.results, strict=False):
@@ -350,10 +350,10 @@ def delete_verb(args: argparse.Namespace) -> int | str:
     from rcl_interfaces.srv import SetParameters
 
     from ros2cli_lite.api import cli_node
+    target = _find_node(args)
+    if target is None:
+        return 'Node not found'
     with cli_node() as node:
-        target = _find_node(node, args)
-        if target is None:
-            return 'Node not found'
         request = SetParameters.Request(
             parameters=[Parameter(name=args.parameter_name, value=ParameterValue())])
         response = _call(node, SetParameters, f'{target}/set_parameters', request)
