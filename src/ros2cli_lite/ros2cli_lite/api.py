@@ -74,6 +74,11 @@ def cli_node(name: str | None = None, discover: bool = True) -> Iterator[Any]:
             context, node = _meet_graph(context, node, node_name)
         yield node
     finally:
+        executor = getattr(node, '_cli_executor', None)
+        if executor is not None:
+            # Before the context goes: an executor collected after it fails to destroy its
+            # guard condition ('Exception ignored in Executor.__del__', seen on Ctrl-C).
+            executor.shutdown(timeout_sec=1.0)
         node.destroy_node()
         rclpy.try_shutdown(context=context)
 
