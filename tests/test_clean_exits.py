@@ -1,10 +1,10 @@
 """Every executable ends without a traceback on SIGINT or SIGTERM, whenever it comes.
 
 Each executable is signalled at three points of its life: while starting (the moment rclpy's
-library is loaded: imports, rclpy.init), once it works (its first line of output), and a while later; the clients also while
-they wait for a server that never comes. It must exit within a few seconds, with no traceback
-and no error exit (0, the shell's 128 + signal, ros2cli's 2 for Ctrl-C, or the signal's own
-default action).
+library is loaded: imports, rclpy.init), once it works (its first line of output), and a
+while later; the clients also while they wait for a server that never comes. It must exit
+within a few seconds, with no traceback and no error exit (0, the shell's 128 + signal,
+ros2cli's 2 for Ctrl-C, or the signal's own default action).
 """
 
 from __future__ import annotations
