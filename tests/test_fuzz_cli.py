@@ -15,7 +15,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from fuzz_support import CI, FLOAT_EDGES, text
-from support import ros2
+from support import RosProcess, executable, leased_domain, ros2, ros_environment
 
 FIELDS = ['r', 'g', 'b', 'width', 'off', 'x', 'y', 'theta', 'name', 'linear', 'angular', 'z',
           'data', '']
@@ -38,7 +38,7 @@ def as_yaml(document) -> str:
 
 
 yaml_texts = st.one_of(documents.map(as_yaml), text.map(lambda t: t[:200]))
-BATCH = st.lists(yaml_texts, min_size=8, max_size=8)
+BATCH = st.lists(yaml_texts, min_size=6, max_size=6)
 COMMANDS = {
     'service call': lambda doc: ['service', 'call', '/turtle1/set_pen', 'turtlesim/srv/SetPen',
                                  doc, '--timeout', '3'],
@@ -48,24 +48,38 @@ COMMANDS = {
 }
 
 
-@pytest.mark.parametrize('verb', list(COMMANDS))
-def test_cli_never_prints_a_traceback(verb, ros_env, launch):
-    sim = launch('turtlesim', 'turtlesim_node', '--headless')
-    sim.wait_for_output(r'Spawning turtle', timeout=20)
+@pytest.fixture(scope='module')
+def sim(tmp_path_factory):
+    """One turtlesim for the module, and the environment to reach it."""
+    tmp = tmp_path_factory.mktemp('fuzz-cli')
+    with leased_domain() as domain:
+        env = ros_environment(domain)
+        process = RosProcess([executable('turtlesim', 'turtlesim_node'), '--headless'], env,
+                             tmp / 'turtlesim.log')
+        try:
+            process.wait_for_output(r'Spawning turtle', timeout=20)
+            yield process, env
+        finally:
+            assert process.stop() == 0, process.output[-3000:]
+            assert 'Traceback' not in process.output, process.output[-3000:]
 
-    @settings(CI, max_examples=2)
+
+@pytest.mark.parametrize('verb', list(COMMANDS))
+def test_cli_never_prints_a_traceback(verb, sim):
+    process, env = sim
+
+    @settings(CI, max_examples=1)
     @given(batch=BATCH)
     def check(batch):
         with ThreadPoolExecutor(max_workers=len(batch)) as pool:
             results = list(pool.map(
-                lambda doc: (doc, ros2(ros_env, *COMMANDS[verb](doc), timeout=30)), batch))
+                lambda doc: (doc, ros2(env, *COMMANDS[verb](doc), timeout=30)), batch))
         for doc, result in results:
             output = result.stdout + result.stderr
             assert 'Traceback' not in output, (doc, output)
             assert result.returncode in (0, 1, 2), (doc, result.returncode, output)
             if result.returncode:
                 assert result.stderr.strip(), (doc, 'refused without a word')
-        assert sim.popen.poll() is None, sim.output
+        assert process.popen.poll() is None, process.output
 
     check()
-    assert 'Traceback' not in sim.output
