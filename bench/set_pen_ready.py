@@ -14,23 +14,13 @@ import sys
 import time
 
 from turtlesim.msg import Pose
-from turtlesim.srv import SetPen, Spawn
+from turtlesim.srv import SetPen
 
 from common import TestNode, session
+from scale import _spawn_all as spawn_all
 
 REQUEST_TOPIC = 'rq/turtle1/set_penRequest'
 REPLY_TOPIC = 'rr/turtle1/set_penReply'
-
-
-def spawn_all(probe: TestNode, count: int) -> None:
-    client = probe.node.create_client(Spawn, '/spawn')
-    if not client.wait_for_service(timeout_sec=30):
-        raise RuntimeError('no /spawn')
-    futures = [client.call_async(Spawn.Request(x=1.0 + (i % 9), y=1.0 + (i // 9) % 9,
-                                               theta=0.0, name=f't{i}')) for i in range(count)]
-    deadline = time.monotonic() + 300
-    while not all(f.done() for f in futures) and time.monotonic() < deadline:
-        probe.executor.spin_once(timeout_sec=0.1)
 
 
 def newcomer(domain: int, bound: float) -> dict[str, float | None]:
@@ -67,19 +57,65 @@ def newcomer(domain: int, bound: float) -> dict[str, float | None]:
     return seen
 
 
+def watch(s, domain: int, names: list[str], seconds: float) -> None:
+    """All turtles driven (as bench/scale.py does) and turtle_controller running: poll a
+    SetPen client's service_is_ready() and the graph counts behind it every 20 ms."""
+    from geometry_msgs.msg import Twist
+    driver = TestNode(domain, 'driver')
+    publishers = [driver.node.create_publisher(Twist, f'/{n}/cmd_vel', 7) for n in names]
+    circle = Twist()
+    circle.linear.x, circle.angular.z = 1.0, 1.0
+    driver.node.create_timer(0.5, lambda: [p.publish(circle) for p in publishers])
+    controller = s.start('my_robot_controller', 'turtle_controller')
+    watcher = TestNode(domain, 'watcher')
+    client = watcher.node.create_client(SetPen, '/turtle1/set_pen')
+    gaps: list[tuple[float, float, str]] = []
+    down_since = None
+    detail = ''
+    start = time.monotonic()
+    try:
+        while time.monotonic() - start < seconds:
+            driver.executor.spin_once(timeout_sec=0.01)
+            watcher.executor.spin_once(timeout_sec=0.01)
+            now = time.monotonic() - start
+            ready = client.service_is_ready()
+            if not ready and down_since is None:
+                down_since = now
+                readers = len(watcher.node.get_subscriptions_info_by_topic(REQUEST_TOPIC,
+                                                                           no_mangle=True))
+                writers = len(watcher.node.get_publishers_info_by_topic(REPLY_TOPIC,
+                                                                        no_mangle=True))
+                detail = f'graph: {readers} request readers, {writers} reply writers'
+            elif ready and down_since is not None:
+                gaps.append((down_since, now, detail))
+                down_since = None
+    finally:
+        watcher.close()
+        driver.close()
+    if down_since is not None:
+        gaps.append((down_since, seconds, detail + ' (still down)'))
+    warnings = controller.output.count('not available')
+    print(f'watch {seconds:g} s: watcher saw set_pen not ready {len(gaps)} times; '
+          f'controller warned {warnings} times')
+    for begin, end, what in gaps[:20]:
+        print(f'  not ready {begin:.2f}-{end:.2f} s ({end - begin:.2f} s) {what}')
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--turtles', type=int, default=200)
     parser.add_argument('--newcomers', type=int, default=3)
     parser.add_argument('--bound', type=float, default=30.0, help='seconds per newcomer')
+    parser.add_argument('--watch', type=float, default=30.0,
+                        help='then seconds of driving with the controller, watched')
     args = parser.parse_args()
     with session('set_pen_ready') as s:
         s.start('turtlesim', 'turtlesim_node', '--headless').wait_for_output(r'Spawning turtle')
         spawner = s.probe('spawner')
         try:
             started = time.monotonic()
-            spawn_all(spawner, args.turtles - 1)
-            print(f'{args.turtles} turtles up in {time.monotonic() - started:.1f} s')
+            names = spawn_all(spawner, args.turtles - 1)
+            print(f'{len(names) + 1} turtles up in {time.monotonic() - started:.1f} s')
         finally:
             spawner.close()
         time.sleep(2.0)
@@ -87,6 +123,8 @@ def main() -> int:
             seen = newcomer(s.domain, args.bound)
             print(f'newcomer {i + 1}: ' + ', '.join(
                 f'{k} {"never" if v is None else f"{v:.2f} s"}' for k, v in seen.items()))
+        if args.watch > 0:
+            watch(s, s.domain, names, args.watch)
     return 0
 
 
