@@ -4,8 +4,8 @@ The generated interface package is called `turtlesim`; this code lives in `turtl
 """
 
 
-def _quiet_ctrl_c_while_starting() -> None:
-    """Ctrl-C while one of this package's executables (in lib/<package>/) still imports would
+def quiet_ctrl_c_while_starting(package: str) -> None:
+    """Ctrl-C while one of `package`'s executables (in lib/<package>/) still imports would
     print a KeyboardInterrupt traceback (main() installs its own handlers only after rclpy
     is imported): end quietly with 130, as a shell reports Ctrl-C."""
     import os
@@ -14,7 +14,7 @@ def _quiet_ctrl_c_while_starting() -> None:
     import threading
     from pathlib import Path
 
-    if (sys.argv and Path(sys.argv[0]).parent.name == 'turtlesim'
+    if (sys.argv and Path(sys.argv[0]).parent.name == package
             and threading.current_thread() is threading.main_thread()
             and signal.getsignal(signal.SIGINT) is signal.default_int_handler):
         # os._exit, not sys.exit: a SystemExit raised inside rclpy's C++ calls can be lost,
@@ -22,4 +22,4 @@ def _quiet_ctrl_c_while_starting() -> None:
         signal.signal(signal.SIGINT, lambda _signum, _frame: os._exit(130))
 
 
-_quiet_ctrl_c_while_starting()
+quiet_ctrl_c_while_starting('turtlesim')
