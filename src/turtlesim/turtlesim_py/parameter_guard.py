@@ -24,7 +24,7 @@ def request_problem(node: Node, parameter: ParameterMsg) -> str | None:
     rclpy's own reason ('Invalid access to undeclared parameter(s): []') names no parameter,
     and it takes an undeclared '' as a success."""
     if parameter.value.type not in _TYPES:
-        return (f'parameter {parameter.name} has type {parameter.value.type}, which is no '
+        return (f'parameter {parameter.name!r} has type {parameter.value.type}, which is no '
                 f'parameter type (allowed: {ALLOWED_TYPES})')
     if not node.has_parameter(parameter.name):
         declared = ', '.join(sorted(node._parameters))
