@@ -101,16 +101,45 @@ def watch(s, domain: int, names: list[str], seconds: float) -> None:
         print(f'  not ready {begin:.2f}-{end:.2f} s ({end - begin:.2f} s) {what}')
 
 
+def shutdown(sim, domain: int) -> None:
+    """SIGINT turtlesim and watch set_pen from a fresh client until turtlesim has exited."""
+    import signal
+    watcher = TestNode(domain, 'shutdown_watcher')
+    client = watcher.node.create_client(SetPen, '/turtle1/set_pen')
+    try:
+        deadline = time.monotonic() + 20
+        while not client.service_is_ready() and time.monotonic() < deadline:
+            watcher.executor.spin_once(timeout_sec=0.02)
+        start = time.monotonic()
+        import os
+        os.killpg(sim.popen.pid, signal.SIGINT)
+        not_ready = exited = None
+        while time.monotonic() - start < 60 and (not_ready is None or exited is None):
+            watcher.executor.spin_once(timeout_sec=0.02)
+            now = time.monotonic() - start
+            if not_ready is None and not client.service_is_ready():
+                not_ready = now
+            if exited is None and sim.popen.poll() is not None:
+                exited = now
+    finally:
+        watcher.close()
+    print(f'turtlesim SIGINT -> set_pen not ready {not_ready:.2f} s -> process exited '
+          f'{exited:.2f} s')
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--turtles', type=int, default=200)
     parser.add_argument('--newcomers', type=int, default=3)
     parser.add_argument('--bound', type=float, default=30.0, help='seconds per newcomer')
+    parser.add_argument('--shutdown', action='store_true',
+                        help='finally SIGINT turtlesim and time its shutdown')
     parser.add_argument('--watch', type=float, default=30.0,
                         help='then seconds of driving with the controller, watched')
     args = parser.parse_args()
     with session('set_pen_ready') as s:
-        s.start('turtlesim', 'turtlesim_node', '--headless').wait_for_output(r'Spawning turtle')
+        sim = s.start('turtlesim', 'turtlesim_node', '--headless')
+        sim.wait_for_output(r'Spawning turtle')
         spawner = s.probe('spawner')
         try:
             started = time.monotonic()
@@ -125,6 +154,8 @@ def main() -> int:
                 f'{k} {"never" if v is None else f"{v:.2f} s"}' for k, v in seen.items()))
         if args.watch > 0:
             watch(s, s.domain, names, args.watch)
+        if args.shutdown:
+            shutdown(sim, s.domain)
     return 0
 
 
