@@ -21,7 +21,7 @@ FIELDS = ['r', 'g', 'b', 'width', 'off', 'x', 'y', 'theta', 'name', 'linear', 'a
           'data', '']
 scalars = st.one_of(st.none(), st.booleans(), st.integers(-2**70, 2**70),
                     st.sampled_from(FLOAT_EDGES), st.floats(),
-                    st.text(st.characters(exclude_characters='\x00'), max_size=30))
+                    st.text(st.characters(codec='utf-8', exclude_characters='\x00'), max_size=30))
 documents = st.recursive(
     scalars,
     lambda inner: st.one_of(st.lists(inner, max_size=4),
