@@ -58,8 +58,3 @@ class RepeatedLog:
         suppressed = self._limiter.admit(key)
         if suppressed is not None:
             self._logger.error(with_count(message, suppressed))
-
-    def warning(self, key: Hashable, message: str) -> None:
-        suppressed = self._limiter.admit(key)
-        if suppressed is not None:
-            self._logger.warning(with_count(message, suppressed))
