@@ -1,17 +1,20 @@
 """Ask /add_two_ints for the sum of two integers (default 3 and 4) and log it."""
 
 import sys
+import threading
+import time
 
-import rclpy
 from example_interfaces.srv import AddTwoInts
-from rclpy.executors import ExternalShutdownException
+from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.utilities import remove_ros_args
 
 from my_robot_controller.int64 import INT64_RANGE, fits_int64
+from my_robot_controller.spinning import SIGNAL_CHECK_PERIOD, ros_session
 
 USAGE = 'usage: ros2 run my_robot_controller add_two_ints_client [a b]'
 DEFAULT_A, DEFAULT_B = 3, 4
+WAIT_WARN_PERIOD = 1.0  # seconds between two "not available" lines, as upstream
 
 
 class ArgumentError(ValueError):
@@ -45,14 +48,34 @@ class AddTwoIntsClient(Node):
         super().__init__('add_two_ints_client')
         self.client = self.create_client(AddTwoInts, 'add_two_ints')
 
-    def wait_for_server(self) -> None:
-        while not self.client.wait_for_service(timeout_sec=1.0):
-            self.get_logger().warning('service /add_two_ints not available, waiting again...')
+    def wait_for_server(self, stop: threading.Event) -> bool:
+        """Wait until the server is there (True) or a signal asks us to stop (False).
 
-    def add(self, a: int, b: int) -> int:
+        Short waits, so that Ctrl-C or SIGTERM is noticed within SIGNAL_CHECK_PERIOD while the
+        context is still valid (rclpy's own handler shut the context down under a waiting
+        wait_for_service: `RCLError: ... context is invalid` and exit code 1).
+        """
+        next_warning = time.monotonic() + WAIT_WARN_PERIOD
+        while not stop.is_set():
+            if self.client.wait_for_service(timeout_sec=SIGNAL_CHECK_PERIOD):
+                return True
+            if time.monotonic() >= next_warning:
+                next_warning += WAIT_WARN_PERIOD
+                self.get_logger().warning('service /add_two_ints not available, waiting again...')
+        return False
+
+    def add(self, a: int, b: int, stop: threading.Event) -> int | None:
+        """The sum from the server, or None when stopped by a signal before the answer."""
         future = self.client.call_async(AddTwoInts.Request(a=a, b=b))
-        rclpy.spin_until_future_complete(self, future)
-        return future.result().sum
+        executor = SingleThreadedExecutor()
+        executor.add_node(self)
+        try:
+            while not future.done() and not stop.is_set():
+                executor.spin_once(timeout_sec=SIGNAL_CHECK_PERIOD)
+        finally:
+            executor.remove_node(self)
+            executor.shutdown(timeout_sec=1.0)
+        return future.result().sum if future.done() else None
 
 
 def main(args: list[str] | None = None) -> int:
@@ -62,16 +85,12 @@ def main(args: list[str] | None = None) -> int:
     except ArgumentError as error:
         print(f'add_two_ints_client: error: {error}\n{USAGE}', file=sys.stderr)
         return 2
-    try:
-        rclpy.init(args=args)
+    with ros_session(args) as stop:
         node = AddTwoIntsClient()
-        node.wait_for_server()
-        total = node.add(a, b)
+        total = node.add(a, b, stop) if node.wait_for_server(stop) else None
+        if total is None:
+            return 130  # interrupted before the answer (as a shell reports Ctrl-C)
         node.get_logger().info(f'Result of add_two_ints: {a} + {b} = {total}')
-    except (KeyboardInterrupt, ExternalShutdownException):
-        return 130
-    finally:
-        rclpy.try_shutdown()
     return 0
 
 

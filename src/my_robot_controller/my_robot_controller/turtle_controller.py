@@ -28,6 +28,7 @@ from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPo
 from rclpy.task import Future
 from turtlesim.msg import Pose
 from turtlesim.srv import SetPen
+from turtlesim_py.parameter_guard import guard_parameter_services
 
 from my_robot_controller.spinning import ros_session, spin_until_stopped
 from my_robot_controller.turtle_logic import (
@@ -72,6 +73,7 @@ class TurtleController(Node):
         self.add_pre_set_parameters_callback(self.on_parameters_arriving)
         self.add_on_set_parameters_callback(self.on_parameters_proposed)
         self.add_post_set_parameters_callback(self.on_parameters_changed)
+        guard_parameter_services(self)  # a request with a bad type byte must not stop us
 
         self.current_side: Side | None = None     # side of the latest pose
         self.requested_side: Side | None = None   # side whose colour was last asked for

@@ -56,7 +56,16 @@ def build_parser(commands: dict[str, tuple[str, str]], only: str | None = None
 
 
 def main(argv: list[str] | None = None) -> int | str:
-    argv = sys.argv[1:] if argv is None else argv
+    # Ctrl-C is a KeyboardInterrupt again from here on (the package's start-up handler ends
+    # the process instead), and ends every command with ros2cli's exit code 2, no traceback.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        return _dispatch(sys.argv[1:] if argv is None else argv)
+    except KeyboardInterrupt:
+        return int(signal.SIGINT)
+
+
+def _dispatch(argv: list[str]) -> int | str:
     if argv and argv[0] == 'run':
         # `ros2 run` passes everything after the executable through untouched.
         from ros2cli_lite.command import run

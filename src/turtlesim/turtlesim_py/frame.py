@@ -32,7 +32,9 @@ from turtlesim.srv import Kill, Spawn
 from turtlesim_py import sim
 from turtlesim_py.canvas import Canvas
 from turtlesim_py.canvas_stream import CanvasStream
+from turtlesim_py.parameter_guard import guard_parameter_services
 from turtlesim_py.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
+from turtlesim_py.repeat_log import RepeatedLog
 from turtlesim_py.turtle import Turtle
 
 BACKGROUND = (('background_r', 69, 'Red channel of the background color'),
@@ -49,6 +51,10 @@ INTROSPECTION_VALUES = ('disabled', 'metadata', 'contents')
 # and underscores, not starting with a digit, no repeated underscores (ROS name rules).
 NAME_TOKEN = r'[A-Za-z_][A-Za-z0-9_]*'
 TURTLE_NAME = re.compile(rf'{NAME_TOKEN}(/{NAME_TOKEN})*')
+# rmw's RMW_TOPIC_MAX_NAME_LENGTH (255 - 8) for a fully qualified name, and the longest
+# name a turtle creates below its own (its action's cancel service).
+MAX_FULL_NAME_LENGTH = 247
+LONGEST_TURTLE_SUFFIX = 'rotate_absolute/_action/cancel_goal'
 PARAMETER_EVENT_QOS = QoSProfile(depth=100, history=qos_profile_sensor_data.history,
                                  reliability=qos_profile_sensor_data.reliability,
                                  durability=qos_profile_sensor_data.durability)
@@ -77,14 +83,28 @@ class PolledByTick(CallbackGroup):
         pass
 
 
-def turtle_name_problem(name: str) -> str | None:
-    """Why `name` cannot name a turtle, or None when it can."""
+def turtle_name_problem(name: str, namespace: str = '/') -> str | None:
+    """Why `name` cannot name a turtle in `namespace`, or None when it can."""
     if not TURTLE_NAME.fullmatch(name):
         return ('allowed: letters, digits and underscores in /-separated tokens that do not '
                 'start with a digit')
     if '__' in name:
         return 'allowed: no repeated underscores'
+    # Every name a turtle creates must fit DDS's topic name limit (rcl refuses longer ones
+    # with an exception that used to escape and kill the node).
+    longest = f'{namespace.rstrip("/")}/{name}/{LONGEST_TURTLE_SUFFIX}'
+    if len(longest) > MAX_FULL_NAME_LENGTH:
+        room = MAX_FULL_NAME_LENGTH - (len(longest) - len(name))
+        return (f'allowed: at most {room} characters here, got {len(name)} (its longest '
+                f'name /.../{LONGEST_TURTLE_SUFFIX} must fit in {MAX_FULL_NAME_LENGTH})')
     return None
+
+
+def shorten(text: str, keep: int = 60) -> str:
+    """`text` for one log line: control characters escaped, long input cut (length said)."""
+    cut = text if len(text) <= keep else f'{text[:keep]}...({len(text)} characters)'
+    return cut if cut.isprintable() else ''.join(
+        c if c.isprintable() else repr(c)[1:-1] for c in cut)
 
 
 class TurtleFrame(RclcppParameters, Node):
@@ -98,6 +118,8 @@ class TurtleFrame(RclcppParameters, Node):
         # One lock for all simulation state: the tick runs on its own thread (see start()),
         # the executor's callbacks on the spinning thread, the window paints from Qt's.
         self.lock = threading.RLock()
+        # Errors met once per message or tick (bad cmd_vel, a failing tick) are rate-limited.
+        self.repeated = RepeatedLog(self.get_logger())
         self.canvas = Canvas(self.lock)
         self.polled_by_tick = PolledByTick()
         self._stop = threading.Event()
@@ -129,6 +151,7 @@ class TurtleFrame(RclcppParameters, Node):
                                           'disabled, metadata or contents'))
         self.introspection = INTROSPECTION[self.get_parameter(INTROSPECTION_PARAMETER).value]
         self.add_post_set_parameters_callback(self._parameters_set)
+        guard_parameter_services(self)
         self.create_subscription(ParameterEvent, '/parameter_events', self._on_parameter_event,
                                  PARAMETER_EVENT_QOS)
         declare_rclcpp_parameters(self, subscribe_parameter_events=False)
@@ -204,7 +227,7 @@ class TurtleFrame(RclcppParameters, Node):
                 try:
                     self.on_tick()
                 except Exception as error:
-                    self.get_logger().error(f'Tick failed: {error!r}')
+                    self.repeated.error(('tick', type(error)), f'Tick failed: {error!r}')
 
     # ---------------------------------------------------------------- helpers
     def configure_introspection(self, service: Service) -> None:
@@ -352,11 +375,11 @@ class TurtleFrame(RclcppParameters, Node):
                     f'Refusing to spawn: {field}={value} is not allowed (allowed: finite numbers)')
                 return response
         if request.name:
-            problem = turtle_name_problem(request.name)
+            problem = turtle_name_problem(request.name, self.get_namespace())
             if problem:
                 self.get_logger().error(
-                    f'Refusing to spawn: name={request.name!r} is not a valid ROS name '
-                    f'({problem})')
+                    f"Refusing to spawn: name='{shorten(request.name)}' is not a valid ROS "
+                    f'name ({problem})')
                 return response
         response.name = self.spawn_turtle(request.name, request.x, request.y, request.theta)
         return response
@@ -366,7 +389,7 @@ class TurtleFrame(RclcppParameters, Node):
             self.kill_turtle(request.name)
         else:
             self.get_logger().error(
-                f'Tried to kill turtle [{request.name}], which does not exist')
+                f'Tried to kill turtle [{shorten(request.name)}], which does not exist')
         return response
 
     def _on_save_canvas(self, request: Trigger.Request,
@@ -412,7 +435,8 @@ class TurtleFrame(RclcppParameters, Node):
                 try:
                     turtle.update(dt, now)
                 except Exception as error:
-                    self.get_logger().error(f'Updating turtle [{turtle.name}] failed: {error!r}')
+                    self.repeated.error((turtle.name, 'update', type(error)),
+                                        f'Updating turtle [{turtle.name}] failed: {error!r}')
         if len(self.tick_costs) < 1_000_000:
             self.tick_costs.append(time.perf_counter() - started)
 

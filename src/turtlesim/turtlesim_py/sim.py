@@ -27,6 +27,10 @@ FLOAT32_MAX = 3.4028234663852886e38
 def norm_angle(angle: float) -> float:
     """Wrap into [-pi, pi) exactly as upstream: a - 2pi * floor((a + pi) / 2pi)."""
     two_pi = 2.0 * UPSTREAM_PI
+    if abs(angle) > 1e9:
+        # The formula loses every digit for huge angles (theta + 3e38 rad/s * dt ended as
+        # -5.9e20, found by fuzzing); fmod is exact, and the same within float precision.
+        angle = math.fmod(angle, two_pi)
     return angle - two_pi * math.floor((angle + UPSTREAM_PI) / two_pi)
 
 

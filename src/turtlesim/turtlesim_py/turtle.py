@@ -108,7 +108,8 @@ class Turtle:
         for field, value in (('linear.x', msg.linear.x), ('linear.y', msg.linear.y),
                              ('angular.z', msg.angular.z)):
             if not sim.finite_float32(value):
-                self.log.error(
+                self.frame.repeated.error(
+                    (self.name, 'cmd_vel', field),
                     f'Ignoring {self.name}/cmd_vel: {field}={value} is not allowed '
                     f'(allowed: finite values within +-{sim.FLOAT32_MAX:.7g})')
                 return

@@ -14,6 +14,10 @@ from rclpy.executors import ExternalShutdownException, ShutdownException, Single
 from rclpy.signals import SignalHandlerOptions
 from rclpy.utilities import remove_ros_args
 
+from turtlesim_py import display
+
+DEFAULT_CANVAS_PNG = 'turtlesim_canvas.png'
+
 
 def parse_args(argv: list[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(prog='turtlesim_node', description=__doc__)
@@ -21,8 +25,10 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                         help='never open a window (default when no display is available)')
     parser.add_argument('--fixed-step', action='store_true',
                         help='advance exactly 0.016 s per tick and publish /clock')
-    parser.add_argument('--canvas-png', default='turtlesim_canvas.png', metavar='PATH',
-                        help='where /turtlesim/_save_canvas and shutdown write the canvas PNG')
+    parser.add_argument('--canvas-png', default=None, metavar='PATH',
+                        help='write the canvas PNG here at shutdown and on '
+                             '/turtlesim/_save_canvas (default: no PNG at shutdown; the '
+                             f'service writes {DEFAULT_CANVAS_PNG} in the current directory)')
     parser.add_argument('--service-introspection', choices=('off', 'metadata', 'contents'),
                         default='off', help='service introspection on every served service')
     parser.add_argument('--tick-stats', metavar='PATH',
@@ -30,16 +36,17 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     return parser.parse_args(argv)
 
 
-def display_available() -> bool:
-    if not (os.environ.get('DISPLAY') or os.environ.get('WAYLAND_DISPLAY')):
-        return False
-    return os.environ.get('QT_QPA_PLATFORM', '') not in ('offscreen', 'minimal')
-
-
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv if argv is None else argv
     args = parse_args(remove_ros_args(argv)[1:])
-    windowed = not args.headless and display_available()
+    windowed = display.wants_window(args.headless)
+    problem = None
+    if windowed:
+        # Qt aborts the whole process when its platform plugin fails: look before creating
+        # the application, and carry on headless with one line saying why and the fix.
+        # (Logged once the node exists, as one WARN line of the node.)
+        problem = display.window_problem()
+        windowed = problem is None
     if not windowed:
         os.environ['QT_QPA_PLATFORM'] = 'offscreen'
     if windowed:
@@ -57,8 +64,10 @@ def main(argv: list[str] | None = None) -> int:
     rclpy.init(args=argv, signal_handler_options=SignalHandlerOptions.NO)
     signal.signal(signal.SIGINT, _interrupt)
     signal.signal(signal.SIGTERM, _interrupt)
-    node = TurtleFrame(canvas_png=args.canvas_png, fixed_step=args.fixed_step,
+    node = TurtleFrame(canvas_png=args.canvas_png or DEFAULT_CANVAS_PNG, fixed_step=args.fixed_step,
                        introspection=args.service_introspection)
+    if problem:
+        node.get_logger().warning(f'No window: {problem}; running headless')
     executor = make_executor()
     executor.add_node(node)
     # ROS callbacks on a spinning thread, the tick on its own thread (TurtleFrame.start), the
@@ -79,11 +88,12 @@ def main(argv: list[str] | None = None) -> int:
                 time.sleep(0.1)
     finally:
         node.stop()
-        try:
-            path = node.save_canvas()
-            node.get_logger().info(f'Canvas written to {path}')
-        except OSError as error:
-            node.get_logger().error(f'Could not write the canvas: {error}')
+        if args.canvas_png:  # only when asked: no file appears in the working directory unasked
+            try:
+                path = node.save_canvas()
+                node.get_logger().info(f'Canvas written to {path}')
+            except OSError as error:
+                node.get_logger().error(f'Could not write the canvas: {error}')
         if args.tick_stats:
             node.write_tick_stats(args.tick_stats)
         executor.shutdown(timeout_sec=2.0)
