@@ -123,6 +123,9 @@ def test_every_tutorial_command_opens_its_page_of_the_same_app(world: World) -> 
     assert f':{world.server.port}/graph?token=' in done.stdout, done.stdout + done.stderr
     assert 'no display here' in done.stdout  # no browser to open: says so, exit code 0
     assert done.returncode == 0
+    done = subprocess.run(['rqt'], env=env, capture_output=True, text=True, timeout=30)
+    assert done.stdout.startswith(f'rqt: http://127.0.0.1:{world.server.port}/?token='), \
+        done.stdout + done.stderr
 
 
 def test_graph_shows_turtlesim_and_controller_joined_by_their_topics(world: World) -> None:

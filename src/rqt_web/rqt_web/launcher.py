@@ -68,8 +68,9 @@ def main(argv: list[str] | None = None, page: str | None = None) -> int:
         print(f'rqt: reusing the running web app on {server.host}:{server.port} '
               f'(stop it with `rqt --stop` to change --host/--port)')
     url = server.url(page)
-    print(f"rqt: {instance.PAGES[page][1]}: {url}"
-          + ('' if started else ' (web app already running)'))
+    # The index page's title is "rqt" itself: "rqt: rqt: URL" would read as a stutter.
+    label = '' if page == 'index' else f'{instance.PAGES[page][1]}: '
+    print(f'rqt: {label}{url}' + ('' if started else ' (web app already running)'))
     if not args.no_browser:
         _open_browser(url)
     return 0
