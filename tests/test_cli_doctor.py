@@ -34,6 +34,7 @@ def test_doctor_warns_about_dangling_topics_of_a_running_turtlesim(ros_env, laun
     assert 'Publisher without subscriber detected on /turtle1/color_sensor.' in messages
     assert 'Subscriber without publisher detected on /turtle1/cmd_vel.' in messages
     assert not any('/rosout' in m or '/parameter_events' in m for m in messages)
+    assert not any('/_canvas' in m for m in messages)  # turtlesim's private topic: not upstream
 
     # A subscriber on /turtle1/pose takes its warning away, as the tutorial shows.
     echo = launch(argv=['ros2', 'topic', 'echo', '/turtle1/pose'])

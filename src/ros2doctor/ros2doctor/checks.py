@@ -228,13 +228,23 @@ def _graph_or_failure(result: Result) -> Graph | None:
         return None
 
 
+def _internal(topic: str) -> bool:
+    """A node's private hidden topic (e.g. turtlesim's `~/_canvas`), which upstream nodes lack.
+
+    Standard hidden endpoints stay: action topics (`…/_action/feedback`) and service
+    introspection (`…/_service_event`) are part of what an upstream graph shows.
+    """
+    last = topic.rsplit('/', 1)[-1]
+    return last.startswith('_') and last != '_service_event'
+
+
 def check_topics() -> Result:
     result = Result()
     found = _graph_or_failure(result)
     if found is None:
         return result
     for topic, _ in found.topics:
-        if topic in SKIP_TOPICS:
+        if topic in SKIP_TOPICS or _internal(topic):
             continue
         publishers, subscribers = len(found.publishers[topic]), len(found.subscriptions[topic])
         if publishers and not subscribers:
@@ -247,7 +257,7 @@ def check_topics() -> Result:
 def report_topics() -> list[Report]:
     report = Report('TOPIC LIST')
     found = graph()
-    topics = [t for t, _ in found.topics if t not in SKIP_TOPICS]
+    topics = [t for t, _ in found.topics if t not in SKIP_TOPICS and not _internal(t)]
     if not topics:
         report.add('topic', 'none')
         report.add('publisher count', 0)
