@@ -176,7 +176,8 @@ def test_load_and_delete_refuse_bad_input(module_ros_env, turtlesim, tmp_path):
     assert result.stderr.startswith(f"Parameter file '{plain}' is not a ROS parameter file")
     assert result.stderr.count('\n') == 1, result.stderr
     check(ros2(env, 'param', 'delete', '/turtlesim', 'background_g'), '',
-          'Deleting parameter failed: Static parameter cannot be undeclared\n')
+          'Deleting parameter failed: parameter background_g: Static parameter cannot be '
+              'undeclared\n')
     check(ros2(env, 'param', 'get', '/turtlesim', 'background_g'), 'Integer value is: 86\n')
     check(ros2(env, 'param', 'dump', '--spin-time', '1', '/nobody'), '', 'Node not found\n', 1)
     check(ros2(env, 'param', 'dump', '/turtlesim', '--output-dir', str(tmp_path / 'nowhere')),

@@ -119,7 +119,8 @@ def test_service_echo_after_switching_introspection_on(module_ros_env, turtlesim
                'contents'), 'Set parameter successful\n')
     echo = background('ros2', 'service', 'echo', '--flow-style', '/spawn')
     probe = probe_in_module_domain
-    probe.spin_until(lambda: probe.node.count_subscribers('/spawn/_service_event') >= 1, 10,
+    # Generous: echo may first start the daemon (~4 s of discovery) before it subscribes.
+    probe.spin_until(lambda: probe.node.count_subscribers('/spawn/_service_event') >= 1, 30,
                      'the echo subscription')
     spawn = interface_type('turtlesim/srv/Spawn')
     probe.call(spawn, '/spawn', spawn.Request(x=3.0, y=3.0, name='echoed'))
@@ -147,7 +148,7 @@ def test_service_echo_add_two_ints_server(module_ros_env, module_launch, backgro
     echo = background('ros2', 'service', 'echo', '/add_two_ints')
     probe = probe_in_module_domain
     probe.spin_until(lambda: probe.node.count_subscribers('/add_two_ints/_service_event') >= 1,
-                     10, 'the echo subscription')
+                     30, 'the echo subscription')
     add = interface_type('example_interfaces/srv/AddTwoInts')
     assert probe.call(add, '/add_two_ints', add.Request(a=2, b=3)).sum == 5
     wait_until(lambda: len(_event_blocks(echo.output)) >= 2, 10, 'two service events')

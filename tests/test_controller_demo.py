@@ -116,6 +116,9 @@ def test_launcher_reports_a_node_that_exits(launch, ros_env, tmp_path):
     assert ("[turtle_controller-2] turtle_controller: error: parameter 'pen_width' = 0"
             in demo.output)
     assert '[INFO] [launch.user]: stopping (turtle_controller exited with code 2)' in demo.output
-    assert re.search(r'^\[INFO\] \[turtlesim_node-1\]: process has finished cleanly',
+    # turtlesim is stopped by Ctrl-C: cleanly, or with 130 when the controller failed so early
+    # that turtlesim was still importing (docs/reliability.md: quiet Ctrl-C while starting).
+    assert re.search(r'^\[INFO\] \[turtlesim_node-1\]: process has finished cleanly|'
+                     r'^\[ERROR\] \[turtlesim_node-1\]: process has died \[pid \d+, exit code 130,',
                      demo.output, re.MULTILINE), demo.output
     assert wait_gone(child_pids(demo.output).values(), timeout=1.0)

@@ -209,6 +209,11 @@ def test_event_handlers_tutorial_runs_unchanged(launch, ros_env, probe, tmp_path
                               ['example_event_handlers_launch.py'])
     env = headless(ros_env, prefix)
     env['USER'] = 'learner'
+    # As after the earlier tutorial pages, the ros2 daemon runs already. A cold one answers
+    # its first query only after ~4 s of discovery, and then the tutorial's two `ros2 param
+    # set` (2 s apart) can finish in either order (docs/launch.md).
+    ros2(env, 'daemon', 'start')
+    ros2(env, 'node', 'list')
     run = launch(argv=['ros2', 'launch', 'launch_tutorial', 'example_event_handlers_launch.py',
                        'turtlesim_ns:=turtlesim3', 'use_provided_red:=True',
                        'new_background_r:=200'], env=env)

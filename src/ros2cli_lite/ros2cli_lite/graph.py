@@ -175,7 +175,9 @@ class _DirectSource(GraphSource):
 def _lookup_bound() -> float:
     """How long a daemon-answered lookup waits for a named entity that is not there (yet)."""
     from ros2cli_lite import api
-    return api.SPIN_TIME if api.SPIN_TIME is not None else 1.0
+    # A node that has just started can take DDS up to ~3 s to announce on a loaded machine
+    # (measured): the daemon's cache is complete only for what has been announced.
+    return api.SPIN_TIME if api.SPIN_TIME is not None else 4.0
 
 
 @contextmanager

@@ -207,6 +207,10 @@ class TurtleFrame(RclcppParameters, Node):
         self.canvas_stream.stop()
         if self._ticker is not None:
             self._ticker.join(timeout=2.0)
+        # The painter stays open between ticks: close it before Qt tears the canvas down, or
+        # the exit crashes ("Cannot destroy paint device that is being painted", SIGSEGV).
+        with self.lock:
+            self.canvas.end_drawing()
 
     def _tick_loop(self) -> None:
         period = sim.FIXED_DT

@@ -18,6 +18,7 @@ from turtlesim.srv import SetPen, TeleportAbsolute, TeleportRelative
 
 from turtlesim_py import sim
 from turtlesim_py.canvas import SHELL_COLOURS
+from turtlesim_py.repeat_log import RepeatedLog
 
 if TYPE_CHECKING:
     from turtlesim_py.frame import TurtleFrame
@@ -52,6 +53,8 @@ class Turtle:
         self.frame = frame
         self.name = name
         self.log = frame.get_logger()
+        # Per turtle: a respawned turtle1 is a new source, its first bad command is logged.
+        self.repeated = RepeatedLog(self.log)
         self.x = x
         self.y_int = sim.CANVAS_HEIGHT - y
         self.theta = theta
@@ -108,8 +111,8 @@ class Turtle:
         for field, value in (('linear.x', msg.linear.x), ('linear.y', msg.linear.y),
                              ('angular.z', msg.angular.z)):
             if not sim.finite_float32(value):
-                self.frame.repeated.error(
-                    (self.name, 'cmd_vel', field),
+                self.repeated.error(
+                    ('cmd_vel', field),
                     f'Ignoring {self.name}/cmd_vel: {field}={value} is not allowed '
                     f'(allowed: finite values within +-{sim.FLOAT32_MAX:.7g})')
                 return
