@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from support import (
+    LEASED_DOMAINS,
     RosProcess,
     TestNode,
     executable,
@@ -20,6 +21,14 @@ from support import (
 
 if not os.environ.get('_ROS_WHEELS_BOOTSTRAP_COMPLETE'):
     pytest.exit('run the tests through scripts/test (it sources the workspace)', returncode=4)
+
+
+@pytest.fixture(scope='session', autouse=True)
+def no_daemon_left() -> Iterator[None]:
+    """Whatever test started a `ros2` daemon on a leased domain, none outlives the session."""
+    yield
+    for leased in sorted(LEASED_DOMAINS):
+        stop_daemon(ros_environment(leased))
 
 
 @pytest.fixture
@@ -63,7 +72,9 @@ def launch(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Callable[..., Ro
 def module_ros_env() -> Iterator[dict[str, str]]:
     """A domain and environment shared by the tests of one module (one turtlesim for all)."""
     with leased_domain() as leased:
-        yield ros_environment(leased)
+        env = ros_environment(leased)
+        yield env
+        stop_daemon(env)  # as ros_env: leave no daemon behind
 
 
 @pytest.fixture(scope='module')

@@ -31,6 +31,10 @@ LOCK_DIR = Path('/tmp/turtle-ws-domains')
 DOMAIN_IDS = range(1, 230)
 
 
+# Every domain this test session leased: at its end, their `ros2` daemons are stopped (conftest).
+LEASED_DOMAINS: set[int] = set()
+
+
 @contextmanager
 def leased_domain() -> Iterator[int]:
     """Hold an exclusive lock on a free ROS_DOMAIN_ID for the duration of the block."""
@@ -44,6 +48,7 @@ def leased_domain() -> Iterator[int]:
         except BlockingIOError:
             handle.close()
             continue
+        LEASED_DOMAINS.add(domain)
         try:
             yield domain
         finally:

@@ -83,9 +83,12 @@ def test_doctor_fails_on_a_bad_domain_id_without_a_traceback(ros_env):
 def test_doctor_warns_when_discovery_would_leave_the_machine(ros_env):
     """SUBNET discovery is only tried inside a fresh network namespace (no traffic out)."""
     env = dict(ros_env, ROS_AUTOMATIC_DISCOVERY_RANGE='SUBNET', ROS_DOMAIN_ID='150')
-    result = subprocess.run(['unshare', '--net', 'ros2', 'doctor', '--exclude-packages'],
-                            env=env, capture_output=True, text=True, timeout=60,
-                            stdin=subprocess.DEVNULL)
+    try:
+        result = subprocess.run(['unshare', '--net', 'ros2', 'doctor', '--exclude-packages'],
+                                env=env, capture_output=True, text=True, timeout=60,
+                                stdin=subprocess.DEVNULL)
+    finally:  # the doctor started a daemon for these settings: stop it (its socket is a file)
+        subprocess.run(['ros2', 'daemon', 'stop'], env=env, capture_output=True, timeout=30)
     messages = warnings_of(result.stderr)
     assert any(m.startswith('ROS_AUTOMATIC_DISCOVERY_RANGE is SUBNET: discovery traffic')
                for m in messages), messages
