@@ -164,9 +164,23 @@ class Player:
                 msg_class, name, offer_qos_for_recorded(topic.offered_qos_profiles))
 
     def _wait_for_subscribers(self) -> None:
-        """Until the graph is known and its subscribers have matched our endpoints (bounded)."""
+        """Until the graph is known and its subscribers have matched our endpoints (bounded).
+
+        The `ros2` daemon's settled graph says how many subscribers each topic has: a fresh
+        player may not have discovered them yet, and would otherwise play to nobody.
+        """
+        from ros2cli_lite.api import CliError
+        from ros2cli_lite.graph import get_graph
+        try:
+            graph = get_graph(detail=False)
+            expected = {p.topic_name: graph.topic_counts(p.topic_name)[1]
+                        for p in self.publishers.values()}
+        except CliError:  # no daemon to ask: rely on our own discovery alone
+            expected = {}
+
         def matched() -> bool:
-            return all(p.get_subscription_count() >= self.node.count_subscribers(p.topic_name)
+            return all(p.get_subscription_count() >= max(
+                expected.get(p.topic_name, 0), self.node.count_subscribers(p.topic_name))
                        for p in self.publishers.values()) and all(
                 c.service_is_ready() for c, _ in self.clients.values())
 

@@ -143,6 +143,8 @@ def stop(path: Path | None = None, timeout: float = 10.0) -> bool:
         reply = _exchange(path, {'op': 'stop'}, 5.0)
     except NotRunning:
         return False
+    except CliError:  # it went away before its answer reached us: stopped all the same
+        reply = {'ok': True}
     deadline = time.monotonic() + timeout
     while _locked(path) and time.monotonic() < deadline:
         time.sleep(0.02)
