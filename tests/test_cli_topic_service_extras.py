@@ -11,7 +11,6 @@ from support import (
     TestNode,
     interface_type,
     ros2,
-    wait_until,
 )
 
 NUMBER = r'\d+\.\d+'
@@ -113,6 +112,22 @@ def _event_blocks(output: str) -> list[str]:
     return [block for block in output.split('---\n') if block.startswith('info:')]
 
 
+def _call_until_echoed(call, echo) -> list[str]:
+    """Call (`call(attempt)`) until echo shows two events, at most 10 times. Events sent before
+    echo's subscription has matched the server's event publisher are lost (volatile, as in
+    Jazzy), and a subscription seen in the graph may not have matched yet."""
+    for attempt in range(1, 11):
+        call(attempt)
+        shown = time.monotonic() + 3.0
+        while len(_event_blocks(echo.output)) < 2 and time.monotonic() < shown:
+            time.sleep(0.05)
+        if len(_event_blocks(echo.output)) >= 2:
+            break
+    blocks = _event_blocks(echo.output)
+    assert len(blocks) >= 2, echo.output
+    return blocks
+
+
 def test_service_echo_after_switching_introspection_on(module_ros_env, turtlesim, background,
                                                        probe_in_module_domain):
     check(ros2(module_ros_env, 'param', 'set', '/turtlesim', 'service_configure_introspection',
@@ -123,16 +138,8 @@ def test_service_echo_after_switching_introspection_on(module_ros_env, turtlesim
     probe.spin_until(lambda: probe.node.count_subscribers('/spawn/_service_event') >= 1, 30,
                      'the echo subscription')
     spawn = interface_type('turtlesim/srv/Spawn')
-    # Events sent before echo's subscription has matched turtlesim's event publisher are lost
-    # (volatile, as in Jazzy): call again, with a new name, until echo shows them (bounded).
-    for attempt in range(1, 11):
-        probe.call(spawn, '/spawn', spawn.Request(x=3.0, y=3.0, name=f'echoed{attempt}'))
-        shown = time.monotonic() + 3.0
-        while len(_event_blocks(echo.output)) < 2 and time.monotonic() < shown:
-            time.sleep(0.05)
-        if len(_event_blocks(echo.output)) >= 2:
-            break
-    received, sent = _event_blocks(echo.output)[:2]
+    received, sent = _call_until_echoed(lambda attempt: probe.call(
+        spawn, '/spawn', spawn.Request(x=3.0, y=3.0, name=f'echoed{attempt}')), echo)[:2]
     assert re.fullmatch(
         r'info:\n  event_type: REQUEST_RECEIVED\n  stamp:\n    sec: \d+\n    nanosec: \d+\n'
         r'  client_gid: \[(\d+, ){15}\d+\]\n  sequence_number: \d+\n'
@@ -157,9 +164,10 @@ def test_service_echo_add_two_ints_server(module_ros_env, module_launch, backgro
     probe.spin_until(lambda: probe.node.count_subscribers('/add_two_ints/_service_event') >= 1,
                      30, 'the echo subscription')
     add = interface_type('example_interfaces/srv/AddTwoInts')
-    assert probe.call(add, '/add_two_ints', add.Request(a=2, b=3)).sum == 5
-    wait_until(lambda: len(_event_blocks(echo.output)) >= 2, 10, 'two service events')
-    received = _event_blocks(echo.output)[0]
+
+    def add_two_and_three(_attempt: int) -> None:
+        assert probe.call(add, '/add_two_ints', add.Request(a=2, b=3)).sum == 5
+    received = _call_until_echoed(add_two_and_three, echo)[0]
     # metadata only: the event says what happened, without the request's contents.
     assert re.fullmatch(
         r'info:\n  event_type: REQUEST_RECEIVED\n  stamp:\n    sec: \d+\n    nanosec: \d+\n'
