@@ -97,7 +97,10 @@ def test_pen_is_applied_again_after_turtlesim_restart(launch, probe, tmp_path, k
     print(f'{signal.Signals(kill_signal).name}: new turtle1 first heard of '
           f'{reborn - launched:.2f} s (probe) / {seen - launched:.2f} s (controller) after '
           f'turtlesim was started; pen applied again {recovery:.3f} s after that')
-    assert tuple(map(int, rgb)) == side_colour(pose_at(poses, float(stamp)).x)
+    # Only the new turtle's poses count: the probe may hear it seconds after the controller
+    # does, and the old turtle's last pose would then still be the latest before `stamp`.
+    reborn_poses = [(t, p) for t, p in poses if t > launched]
+    assert tuple(map(int, rgb)) == side_colour(pose_at(reborn_poses, float(stamp)).x)
     # The 1 s target is a speed figure: bench/soak.py measures it over 20 restarts (a timed
     # assertion here failed at 1.03 s on a loaded machine). Here: applied again, in a bound.
     assert recovery <= 10.0

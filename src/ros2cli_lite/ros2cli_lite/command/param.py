@@ -61,9 +61,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _add_timeout(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument('--timeout', metavar='N', type=int, default=1,
-                        help='Wait for N seconds until node becomes available (default '
-                        '%(default)s sec)')
+    # ros2cli's default is 1 s; a node that has just started can take up to ~3 s to be
+    # discovered on a loaded machine, so without --timeout the lookup waits up to 4 s.
+    parser.add_argument('--timeout', metavar='N', type=int, default=None,
+                        help='Wait for N seconds until node becomes available (default: up '
+                        'to 4 sec while a new node is being discovered)')
 
 
 def absolute(name: str | None) -> str | None:
