@@ -143,11 +143,27 @@ def spin_once(node: Any, timeout: float) -> None:
     """Process pending callbacks of `node` for at most `timeout` seconds."""
     executor = getattr(node, '_cli_executor', None)
     if executor is None:
-        from rclpy.executors import SingleThreadedExecutor
-        executor = SingleThreadedExecutor(context=node.context)
+        executor = _cli_executor_class()(context=node.context)
         executor.add_node(node)
         node._cli_executor = executor
     executor.spin_once(timeout_sec=timeout)
+
+
+def _cli_executor_class() -> type:
+    from rclpy.executors import SingleThreadedExecutor
+
+    class CliExecutor(SingleThreadedExecutor):
+        """rclpy's executor, quiet when a Ctrl-C cut its __init__ short.
+
+        rclpy's __del__ then reads an attribute __init__ never set and prints "Exception
+        ignored ... no attribute '_sigint_gc'" (found by tests/test_clean_exits.py).
+        """
+
+        def __del__(self) -> None:
+            if hasattr(self, '_sigint_gc'):
+                super().__del__()
+
+    return CliExecutor
 
 
 def graph_snapshot(node: Any) -> tuple:
