@@ -12,7 +12,7 @@ setup(
     name=package_name,
     version='0.1.0',
     packages=find_packages(exclude=['test']),
-    package_data={package_name: ['static/*', 'fastdds_discovery.xml']},
+    package_data={package_name: ['static/*']},
     data_files=[
         ('share/ament_index/resource_index/packages',
          ['resource/' + package_name] + ['resource/' + tool for tool in TOOLS]),

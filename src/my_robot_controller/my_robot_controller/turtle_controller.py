@@ -57,16 +57,9 @@ SET_PEN_SERVICE = '/turtle1/set_pen'
 # the re-apply after a turtlesim restart well within 1 s; 20 Hz cost 2 % of a core.
 GRAPH_CHECK_PERIOD = 0.2
 WAITING_WARN_PERIOD = 1.0
-# A request unanswered for this long is assumed lost (its server died before answering) and
-# is sent again.
+# A request unanswered for this long is assumed lost (its server died before answering, or
+# the request went out before a just-restarted server had matched us) and is sent again.
 PEN_REPLY_TIMEOUT = 2.0
-# The first request to a server just found can be lost another way: service_is_ready() sees
-# only our side of the DDS match, and a reply sent before the server has matched our reply
-# reader goes nowhere (20 turtlesim restarts: 1 in 20 waited the full 2 s). That race lasts
-# milliseconds, so the first request is sent again much sooner (a round trip takes ~1 ms), and
-# each further one waits twice as long, up to PEN_REPLY_TIMEOUT: a server too loaded to answer
-# in 0.3 s is not asked again and again.
-FIRST_PEN_REPLY_TIMEOUT = 0.3
 
 
 class ParameterError(ValueError):
@@ -88,9 +81,7 @@ class TurtleController(Node):
         # The first warning only after a period: discovery normally takes a moment.
         self.last_waiting_warn = time.monotonic()
         self.pose_publishers: set[bytes] = set()  # GIDs of the /turtle1/pose publishers
-        # future -> side, colour, time sent, seconds until it counts as lost
-        self.pending: dict[Future, tuple[Side, Rgb, float, float]] = {}
-        self.lost_in_a_row = 0  # requests given up on since the last reply
+        self.pending: dict[Future, tuple[Side, Rgb, float]] = {}  # -> side, colour, time sent
 
         self.cmd_vel = self.create_publisher(Twist, '/turtle1/cmd_vel', TURTLE_QOS)
         self.create_subscription(Pose, POSE_TOPIC, self.on_pose, TURTLE_QOS)
@@ -186,18 +177,16 @@ class TurtleController(Node):
         # costs no extra check period (service_is_ready only reads the local graph cache).
         if not self.check_server():
             return
-        timeout = PEN_REPLY_TIMEOUT
         if self.requested_side is None:
             # A re-apply covers every turtle1 publishing now: the graph check must not take
             # the one whose pose brought us here for yet another new turtle.
             self.pose_publishers = self.pose_publisher_ids()
-            timeout = min(PEN_REPLY_TIMEOUT, FIRST_PEN_REPLY_TIMEOUT * 2 ** self.lost_in_a_row)
         side = self.current_side
         r, g, b = colour_for(side, self.config)
         future = self.set_pen.call_async(
             SetPen.Request(r=r, g=g, b=b, width=self.config.pen_width, off=0))
         self.requested_side = side
-        self.pending[future] = (side, (r, g, b), time.monotonic(), timeout)
+        self.pending[future] = (side, (r, g, b), time.monotonic())
         future.add_done_callback(self.on_pen_reply)
 
     def pose_publisher_ids(self) -> set[bytes]:
@@ -219,8 +208,7 @@ class TurtleController(Node):
     def on_pen_reply(self, future: Future) -> None:
         if future not in self.pending or future.cancelled():
             return  # given up on in on_graph_check
-        side, colour, _, _ = self.pending.pop(future)
-        self.lost_in_a_row = 0
+        side, colour, _ = self.pending.pop(future)
         error = future.exception()
         if error is not None:
             self.get_logger().error(f'set_pen for the {side.value} side failed: {error}')
@@ -255,15 +243,14 @@ class TurtleController(Node):
             self.requested_side = self.current_side = None
         self.pose_publishers = publishers
 
-        for future, (side, _, sent, timeout) in list(self.pending.items()):
-            if time.monotonic() - sent > timeout:
+        for future, (side, _, sent) in list(self.pending.items()):
+            if time.monotonic() - sent > PEN_REPLY_TIMEOUT:
                 del self.pending[future]
-                self.lost_in_a_row += 1
                 self.set_pen.remove_pending_request(future)
                 future.cancel()
                 self.get_logger().warning(
                     f'set_pen for the {side.value} side unanswered after '
-                    f'{timeout:g} s, asking again')
+                    f'{PEN_REPLY_TIMEOUT:g} s, asking again')
                 if self.requested_side is side:
                     self.requested_side = None
         self.request_pen_if_due()

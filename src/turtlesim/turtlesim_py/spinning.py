@@ -19,6 +19,8 @@ from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
 
+from turtlesim_py.discovery import announce_often
+
 SIGNAL_CHECK_PERIOD = 0.1  # seconds: the longest a stop request waits to be noticed
 
 
@@ -26,6 +28,7 @@ SIGNAL_CHECK_PERIOD = 0.1  # seconds: the longest a stop request waits to be not
 def ros_session(args: list[str] | None = None) -> Iterator[threading.Event]:
     """rclpy.init with our own SIGINT/SIGTERM handlers; yields the event they set."""
     stop = threading.Event()
+    announce_often()  # met within 0.5 s by processes that missed its first announcements
     rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, lambda _signum, _frame: stop.set())

@@ -15,6 +15,7 @@ from rclpy.signals import SignalHandlerOptions
 from rclpy.utilities import remove_ros_args
 
 from turtlesim_py import display
+from turtlesim_py.discovery import announce_often
 
 DEFAULT_CANVAS_PNG = 'turtlesim_canvas.png'
 
@@ -61,6 +62,7 @@ def main(argv: list[str] | None = None) -> int:
     # Our own handlers: Ctrl-C and SIGTERM only set a flag that the main thread (which never
     # blocks in C) notices within 0.1 s; the canvas is then saved and logged while the context
     # is still valid, and the process exits with 0.
+    announce_often()  # a restarted turtlesim is met by the running nodes within 0.5 s
     rclpy.init(args=argv, signal_handler_options=SignalHandlerOptions.NO)
     signal.signal(signal.SIGINT, _interrupt)
     signal.signal(signal.SIGTERM, _interrupt)
