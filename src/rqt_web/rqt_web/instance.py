@@ -19,6 +19,8 @@ import urllib.request
 from dataclasses import dataclass
 from pathlib import Path
 
+from turtlesim_py.discovery import profile_path
+
 # The environment that decides which ROS graph a server sees: a different value is another app.
 ROS_SETTINGS = ('ROS_DOMAIN_ID', 'ROS_AUTOMATIC_DISCOVERY_RANGE', 'ROS_STATIC_PEERS',
                 'ROS_LOCALHOST_ONLY', 'RMW_IMPLEMENTATION', 'FASTRTPS_DEFAULT_PROFILES_FILE',
@@ -68,6 +70,9 @@ def state_dir() -> Path:
 def settings_key() -> str:
     """A short name for this user's ROS settings (and Python environment)."""
     settings = {name: os.environ.get(name, '') for name in ROS_SETTINGS}
+    if settings['FASTRTPS_DEFAULT_PROFILES_FILE'] == profile_path():
+        # Set by our own nodes for themselves (turtlesim_py.discovery): not the user's choice.
+        settings['FASTRTPS_DEFAULT_PROFILES_FILE'] = ''
     settings['prefix'] = sys.prefix
     digest = hashlib.sha256(json.dumps(settings, sort_keys=True).encode()).hexdigest()[:12]
     return f'domain{settings["ROS_DOMAIN_ID"] or 0}-{digest}'
