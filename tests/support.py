@@ -24,7 +24,7 @@ from ament_index_python.packages import get_package_prefix
 from rclpy.context import Context
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
-from turtlesim_py.discovery import announce_often, profile_path
+from turtlesim_py.discovery import announce_often, is_ours
 
 REPO = Path(__file__).resolve().parent.parent
 LOCK_DIR = Path('/tmp/turtle-ws-domains')
@@ -60,7 +60,7 @@ def leased_domain() -> Iterator[int]:
 
 def ros_environment(domain: int) -> dict[str, str]:
     env = dict(os.environ)
-    if env.get('FASTRTPS_DEFAULT_PROFILES_FILE') == profile_path():
+    if is_ours(env.get('FASTRTPS_DEFAULT_PROFILES_FILE')):
         # Set for the probe (TestNode): processes under test choose their own, as for a user.
         del env['FASTRTPS_DEFAULT_PROFILES_FILE']
     env['ROS_DOMAIN_ID'] = str(domain)
@@ -140,7 +140,7 @@ class TestNode:
         # Announced every 0.5 s, as our nodes are: a restarted turtlesim then meets the probe
         # about as soon as it meets turtle_controller, not at the probe's next announcement
         # 3 s later (the probe heard a new turtle 3 s after the controller did).
-        announce_often()
+        announce_often(fresh_port=False)  # a test may hold several probes at once
         self.context = Context()
         rclpy.init(context=self.context, domain_id=domain)
         self.node = Node(name, context=self.context)

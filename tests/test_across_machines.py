@@ -80,15 +80,7 @@ def colour_counts(png: Path) -> dict[tuple[int, int, int], int]:
     return counts
 
 
-@pytest.mark.parametrize('discovery', [
-    'multicast',
-    # Skipped until understood: in 2 of 3 full-suite runs the controller never saw
-    # /turtle1/set_pen through ROS_STATIC_PEERS within 30 s (topics flowed); alone it passes
-    # (9.5 s). Tracked in the reliability issue; a test that needs a retry is a bug report.
-    pytest.param('static_peers', marks=pytest.mark.skip(
-        reason='static-peers set_pen discovery fails now and then under load (reliability '
-               'issue)')),
-])
+@pytest.mark.parametrize('discovery', ['multicast', 'static_peers'])
 def test_turtlesim_and_controller_on_two_machines(discovery, tmp_path):
     multicast = discovery == 'multicast'
     machines = Machines(multicast)

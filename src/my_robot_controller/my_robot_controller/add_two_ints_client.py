@@ -8,9 +8,9 @@ from example_interfaces.srv import AddTwoInts
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.utilities import remove_ros_args
+from turtlesim_py.spinning import SIGNAL_CHECK_PERIOD, ros_session
 
 from my_robot_controller.int64 import INT64_RANGE, fits_int64
-from my_robot_controller.spinning import SIGNAL_CHECK_PERIOD, ros_session
 
 USAGE = 'usage: ros2 run my_robot_controller add_two_ints_client [a b]'
 DEFAULT_A, DEFAULT_B = 3, 4

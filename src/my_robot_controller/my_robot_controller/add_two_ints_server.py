@@ -7,9 +7,9 @@ from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import qos_profile_system_default
 from rclpy.service_introspection import ServiceIntrospectionState
+from turtlesim_py.spinning import ros_session, spin_until_stopped
 
 from my_robot_controller.int64 import INT64_RANGE, fits_int64
-from my_robot_controller.spinning import ros_session, spin_until_stopped
 
 # As ros2/demos' introspection_service: `ros2 param set /add_two_ints_server
 # service_configure_introspection contents` lets `ros2 service echo /add_two_ints` see calls.

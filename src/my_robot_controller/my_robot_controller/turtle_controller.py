@@ -29,8 +29,8 @@ from rclpy.task import Future
 from turtlesim.msg import Pose
 from turtlesim.srv import SetPen
 from turtlesim_py.parameter_guard import guard_parameter_services
+from turtlesim_py.spinning import ros_session, spin_until_stopped
 
-from my_robot_controller.spinning import ros_session, spin_until_stopped
 from my_robot_controller.turtle_logic import (
     DEFAULTS,
     PARAMETERS,

@@ -19,7 +19,7 @@ import urllib.request
 from dataclasses import dataclass
 from pathlib import Path
 
-from turtlesim_py.discovery import profile_path
+from turtlesim_py.discovery import is_ours
 
 # The environment that decides which ROS graph a server sees: a different value is another app.
 ROS_SETTINGS = ('ROS_DOMAIN_ID', 'ROS_AUTOMATIC_DISCOVERY_RANGE', 'ROS_STATIC_PEERS',
@@ -70,7 +70,7 @@ def state_dir() -> Path:
 def settings_key() -> str:
     """A short name for this user's ROS settings (and Python environment)."""
     settings = {name: os.environ.get(name, '') for name in ROS_SETTINGS}
-    if settings['FASTRTPS_DEFAULT_PROFILES_FILE'] == profile_path():
+    if is_ours(settings['FASTRTPS_DEFAULT_PROFILES_FILE']):
         # Set by our own nodes for themselves (turtlesim_py.discovery): not the user's choice.
         settings['FASTRTPS_DEFAULT_PROFILES_FILE'] = ''
     settings['prefix'] = sys.prefix

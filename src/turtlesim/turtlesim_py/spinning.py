@@ -3,7 +3,7 @@
 rclpy's default Ctrl-C handling raises KeyboardInterrupt wherever the main thread happens
 to be. When that is inside rclpy's C++ code (taking a message, say), pybind11 turns it into
 `RuntimeError: Unable to convert call argument ...` and the node dies with a traceback and
-exit code 1 (seen in about one stop in eight of the turtle demo). Here the signal only sets a flag,
+exit code 1 (seen about once in eight stops of the demo). Here the signal only sets a flag,
 and the spin loop notices it within SIGNAL_CHECK_PERIOD.
 """
 
@@ -15,7 +15,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 
 import rclpy
-from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from rclpy.executors import Executor, ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
 
@@ -40,9 +40,10 @@ def ros_session(args: list[str] | None = None) -> Iterator[threading.Event]:
         rclpy.try_shutdown()
 
 
-def spin_until_stopped(node: Node, stop: threading.Event) -> None:
+def spin_until_stopped(node: Node, stop: threading.Event,
+                       executor: Executor | None = None) -> None:
     """Spin `node` until `stop` is set (by a signal) or the context is shut down."""
-    executor = SingleThreadedExecutor()
+    executor = executor or SingleThreadedExecutor()
     executor.add_node(node)
     try:
         while not stop.is_set() and rclpy.ok():
