@@ -50,6 +50,22 @@ class Machines:
             ip('-n', ns, 'link', 'set', dev, 'up')
             if multicast:  # discovery multicast (239.255.0.1) goes over the veth
                 ip('-n', ns, 'route', 'add', '224.0.0.0/4', 'dev', dev)
+        # Fast DDS lists the interfaces once, when a process starts, and leaves out one that is
+        # not up yet. The kernel reports a veth's carrier a moment after both ends are set up,
+        # and over a second later right after another namespace was deleted: the second
+        # variant's controller then started on 'NO-CARRIER ... state DOWN', announced only its
+        # loopback address and was never heard back (half of the runs).
+        deadline = time.monotonic() + 10
+        while not all(self._is_up(ns, dev) for ns, dev in ((self.sim, veth_sim),
+                                                           (self.ctl, veth_ctl))):
+            assert time.monotonic() < deadline, 'the veth pair did not come up within 10 s'
+            time.sleep(0.05)
+
+    @staticmethod
+    def _is_up(ns: str, dev: str) -> bool:
+        shown = subprocess.run(['ip', '-n', ns, '-o', 'link', 'show', 'dev', dev],
+                               capture_output=True, text=True, timeout=10).stdout
+        return 'state UP' in shown and 'NO-CARRIER' not in shown
 
     def close(self) -> None:
         for ns in (self.sim, self.ctl):
@@ -62,6 +78,9 @@ class Machines:
 def machine_env(domain: int, static_peer: str | None) -> dict[str, str]:
     env = ros_environment(domain)
     env['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'SUBNET'
+    # Two machines share no memory: without this the namespaces' processes (one /dev/shm,
+    # one machine id) would also pass data through Fast DDS's shared-memory transport.
+    env['FASTDDS_BUILTIN_TRANSPORTS'] = 'UDPv4'
     if static_peer:
         env['ROS_STATIC_PEERS'] = static_peer
     return env
