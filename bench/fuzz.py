@@ -44,7 +44,8 @@ def main() -> int:
     RESULTS.mkdir(exist_ok=True)
     (RESULTS / 'logs').mkdir(exist_ok=True)
     (RESULTS / 'logs' / 'fuzz.log').write_text(result.stdout + result.stderr)
-    cases = len(re.findall(r'^Test case: ', result.stdout, re.MULTILINE))
+    # pytest's progress dot lands in front of each later property's first case.
+    cases = len(re.findall(r'^\.*Test case: ', result.stdout, re.MULTILINE))
     summary = result.stdout.strip().splitlines()[-1] if result.stdout.strip() else ''
     print(f'fuzz: {cases} generated cases in {elapsed:.0f} s ({per_property} per property, '
           f'{len(PROPERTIES)} modules); pytest: {summary}')
