@@ -21,10 +21,10 @@ from typing import Any
 
 import rclpy
 from ament_index_python.packages import get_package_prefix
+from node_runtime.discovery import announce_often, is_ours
 from rclpy.context import Context
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
-from turtlesim_py.discovery import announce_often, is_ours
 
 REPO = Path(__file__).resolve().parent.parent
 LOCK_DIR = Path('/tmp/turtle-ws-domains')

@@ -1,4 +1,4 @@
-"""turtlesim_py.discovery: the announcement profile and the participant-id rotation.
+"""node_runtime.discovery: the announcement profile and the participant-id rotation.
 
 The rotation's effect over real DDS (a turtlesim restarted after SIGKILL gets its pen back
 quickly) is measured by bench/soak.py and exercised by test_controller_lifecycle.py; here,
@@ -13,7 +13,7 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from turtlesim_py import discovery
+from node_runtime import discovery
 
 
 @pytest.fixture

@@ -13,9 +13,9 @@ import signal
 import time
 
 from geometry_msgs.msg import Twist
+from node_runtime.repeat_log import RepeatedLog
 from std_srvs.srv import Trigger
 from turtlesim.srv import Spawn
-from turtlesim_py.repeat_log import RepeatedLog
 
 from support import RosProcess, executable, turtle_qos
 

@@ -33,5 +33,9 @@ setup(
             'rqt_graph = rqt_web.launcher:graph_main',
             'rqt_console = rqt_web.launcher:console_main',
         ],
+        # A headless turtlesim prints where to watch it (turtlesim_py/canvas_stream.py).
+        'turtlesim.live_view': [
+            'rqt_web = rqt_web.instance:turtlesim_live_view',
+        ],
     },
 )

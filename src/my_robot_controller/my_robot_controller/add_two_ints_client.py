@@ -5,10 +5,10 @@ import threading
 import time
 
 from example_interfaces.srv import AddTwoInts
+from node_runtime.spinning import SIGNAL_CHECK_PERIOD, ros_session
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.utilities import remove_ros_args
-from turtlesim_py.spinning import SIGNAL_CHECK_PERIOD, ros_session
 
 from my_robot_controller.int64 import INT64_RANGE, fits_int64
 

@@ -1,13 +1,13 @@
 """Serve /add_two_ints: answer each request with the sum of its two integers."""
 
 from example_interfaces.srv import AddTwoInts
+from node_runtime.spinning import ros_session, spin_until_stopped
 from rcl_interfaces.msg import SetParametersResult
 from rclpy.exceptions import InvalidParameterTypeException, InvalidParameterValueException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import qos_profile_system_default
 from rclpy.service_introspection import ServiceIntrospectionState
-from turtlesim_py.spinning import ros_session, spin_until_stopped
 
 from my_robot_controller.int64 import INT64_RANGE, fits_int64
 

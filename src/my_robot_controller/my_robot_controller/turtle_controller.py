@@ -13,6 +13,8 @@ import time
 from dataclasses import asdict
 
 from geometry_msgs.msg import Twist
+from node_runtime.parameter_guard import guard_parameter_services
+from node_runtime.spinning import ros_session, spin_until_stopped
 from rcl_interfaces.msg import (
     FloatingPointRange,
     IntegerRange,
@@ -28,8 +30,6 @@ from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPo
 from rclpy.task import Future
 from turtlesim.msg import Pose
 from turtlesim.srv import SetPen
-from turtlesim_py.parameter_guard import guard_parameter_services
-from turtlesim_py.spinning import ros_session, spin_until_stopped
 
 from my_robot_controller.turtle_logic import (
     DEFAULTS,

@@ -19,7 +19,7 @@ import urllib.request
 from dataclasses import dataclass
 from pathlib import Path
 
-from turtlesim_py.discovery import is_ours
+from node_runtime.discovery import is_ours
 
 # The environment that decides which ROS graph a server sees: a different value is another app.
 ROS_SETTINGS = ('ROS_DOMAIN_ID', 'ROS_AUTOMATIC_DISCOVERY_RANGE', 'ROS_STATIC_PEERS',
@@ -71,7 +71,7 @@ def settings_key() -> str:
     """A short name for this user's ROS settings (and Python environment)."""
     settings = {name: os.environ.get(name, '') for name in ROS_SETTINGS}
     if is_ours(settings['FASTRTPS_DEFAULT_PROFILES_FILE']):
-        # Set by our own nodes for themselves (turtlesim_py.discovery): not the user's choice.
+        # Set by our own nodes for themselves (node_runtime.discovery): not the user's choice.
         settings['FASTRTPS_DEFAULT_PROFILES_FILE'] = ''
     settings['prefix'] = sys.prefix
     digest = hashlib.sha256(json.dumps(settings, sort_keys=True).encode()).hexdigest()[:12]
@@ -121,6 +121,13 @@ def running() -> Instance | None:
     """The server for the current ROS settings, when one is up and answering."""
     instance = read_state()
     return instance if instance is not None and answers(instance) else None
+
+
+def turtlesim_live_view() -> str | None:
+    """The Turtlesim page's URL when the app for these settings runs (entry point
+    `turtlesim.live_view`: a headless turtlesim prints it)."""
+    server = running()
+    return server.url('turtlesim') if server is not None else None
 
 
 def ensure_running(host: str = '127.0.0.1', port: int = 0) -> tuple[Instance, bool]:

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from aiohttp import WSMsgType, web
-from turtlesim_py.discovery import announce_often
+from node_runtime.discovery import announce_often
 
 from rqt_web import forms, instance, security
 from rqt_web.ros_bridge import RosBridge

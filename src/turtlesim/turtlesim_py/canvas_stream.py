@@ -85,13 +85,20 @@ class CanvasStream:
         self.publisher.publish(msg)
 
 
+# Viewers register a function in this entry-point group that returns the URL where a
+# headless turtlesim can be watched now, or None (rqt_web: its Turtlesim page). turtlesim
+# looks them up instead of importing a viewer: the simulator knows no viewer package.
+LIVE_VIEW_GROUP = 'turtlesim.live_view'
+
+
 def live_view_hint() -> str:
-    """Where a headless turtlesim can be watched: the rqt web app's URL when it runs."""
-    try:
-        from rqt_web import instance
-        server = instance.running()
-    except Exception:  # rqt_web not installed, or its state unreadable: just the hint
-        server = None
-    if server is not None:
-        return f'Live view: {server.url("turtlesim")}'
+    """Where a headless turtlesim can be watched: a registered viewer's URL when one runs."""
+    from importlib.metadata import entry_points
+    for entry_point in sorted(entry_points(group=LIVE_VIEW_GROUP), key=lambda e: e.name):
+        try:
+            url = entry_point.load()()
+        except Exception:  # a viewer not importable, or its state unreadable: just the hint
+            url = None
+        if url:
+            return f'Live view: {url}'
     return 'Headless: watch the canvas live in a browser with `rqt turtlesim`'

@@ -7,11 +7,11 @@ import sys
 from enum import Enum
 
 from geometry_msgs.msg import Twist
+from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.node import Node
 from std_srvs.srv import Empty
 from turtlesim.msg import Pose
 
-from turtlesim_py.spinning import ros_session, spin_until_stopped
 from turtlesim_py.turtle import TOPIC_QOS
 
 PI = 3.141592

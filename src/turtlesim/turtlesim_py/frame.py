@@ -11,6 +11,8 @@ import time
 from array import array
 from pathlib import Path
 
+from node_runtime.parameter_guard import guard_parameter_services
+from node_runtime.repeat_log import RepeatedLog
 from rcl_interfaces.msg import (
     IntegerRange,
     ParameterDescriptor,
@@ -32,9 +34,7 @@ from turtlesim.srv import Kill, Spawn
 from turtlesim_py import sim
 from turtlesim_py.canvas import Canvas
 from turtlesim_py.canvas_stream import CanvasStream
-from turtlesim_py.parameter_guard import guard_parameter_services
 from turtlesim_py.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
-from turtlesim_py.repeat_log import RepeatedLog
 from turtlesim_py.turtle import Turtle
 
 BACKGROUND = (('background_r', 69, 'Red channel of the background color'),

@@ -5,10 +5,10 @@ from __future__ import annotations
 import sys
 
 from geometry_msgs.msg import Twist
+from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.node import Node
 from turtlesim.msg import Pose
 
-from turtlesim_py.spinning import ros_session, spin_until_stopped
 from turtlesim_py.turtle import TOPIC_QOS
 
 

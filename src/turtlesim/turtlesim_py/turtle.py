@@ -8,6 +8,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from geometry_msgs.msg import Twist
+from node_runtime.repeat_log import RepeatedLog
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.action.server import ServerGoalHandle
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
@@ -18,7 +19,6 @@ from turtlesim.srv import SetPen, TeleportAbsolute, TeleportRelative
 
 from turtlesim_py import sim
 from turtlesim_py.canvas import SHELL_COLOURS
-from turtlesim_py.repeat_log import RepeatedLog
 
 if TYPE_CHECKING:
     from turtlesim_py.frame import TurtleFrame

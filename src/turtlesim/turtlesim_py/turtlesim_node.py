@@ -10,12 +10,12 @@ import threading
 import time
 
 import rclpy
+from node_runtime.discovery import announce_often
 from rclpy.executors import ExternalShutdownException, ShutdownException, SingleThreadedExecutor
 from rclpy.signals import SignalHandlerOptions
 from rclpy.utilities import remove_ros_args
 
 from turtlesim_py import display
-from turtlesim_py.discovery import announce_often
 
 DEFAULT_CANVAS_PNG = 'turtlesim_canvas.png'
 

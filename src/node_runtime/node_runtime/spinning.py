@@ -15,11 +15,10 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 
 import rclpy
+from node_runtime.discovery import announce_often
 from rclpy.executors import Executor, ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
-
-from turtlesim_py.discovery import announce_often
 
 SIGNAL_CHECK_PERIOD = 0.1  # seconds: the longest a stop request waits to be noticed
 

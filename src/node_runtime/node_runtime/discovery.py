@@ -5,7 +5,7 @@ Two Fast DDS behaviours slow down a node that (re)starts next to running ones:
 - Fast DDS announces each participant every 3 s once its first announcements are sent. A
   process that missed those (it happens on localhost now and then) learns of the participant
   only at the next one, and until both sides know each other a service request gets no reply.
-  Our profile (share/turtlesim/config/fastdds_announce.xml) announces every 0.5 s.
+  Our profile (share/node_runtime/config/fastdds_announce.xml) announces every 0.5 s.
 - A participant takes the lowest free participant id, so a process restarted after a SIGKILL
   gets the killed one's UDP ports back. Until the dead participant's lease ends (20 s), the
   running nodes' writers did not deliver to the new one: a restarted turtlesim answered
@@ -34,17 +34,18 @@ OTHER_RANGE_IDS = 4
 
 
 def profile_path() -> str | None:
-    """The installed 0.5 s announcement profile, None when turtlesim's share has none."""
+    """The installed 0.5 s announcement profile, None when node_runtime's share has none."""
     from ament_index_python.packages import PackageNotFoundError, get_package_share_directory
     try:
-        profile = Path(get_package_share_directory('turtlesim')) / 'config' / 'fastdds_announce.xml'
+        share = Path(get_package_share_directory('node_runtime'))
+        profile = share / 'config' / 'fastdds_announce.xml'
     except PackageNotFoundError:
         return None
     return str(profile) if profile.is_file() else None
 
 
 def _generated_dir() -> Path:
-    return Path(tempfile.gettempdir()) / f'turtlesim-fastdds-{os.getuid()}'
+    return Path(tempfile.gettempdir()) / f'node_runtime-fastdds-{os.getuid()}'
 
 
 def is_ours(profile: str | None) -> bool:
