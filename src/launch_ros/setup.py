@@ -16,4 +16,11 @@ setup(
     maintainer_email='team@turtles.example.com',
     description='ROS 2 specific launch actions and substitutions.',
     license='Apache-2.0',
+    entry_points={
+        # Imported by launch's front ends before parsing: registers <node>, <set_parameter>,
+        # <push-ros-namespace>, <set_remap> and $(find-pkg-share), $(exec-in-pkg), ...
+        'launch.frontend.launch_extension': [
+            'launch_ros = launch_ros',
+        ],
+    },
 )

@@ -6,6 +6,7 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
+from launch.frontend.expose import expose_action
 from launch.substitution import (
     SomeSubstitutionsType,
     normalize_to_list_of_substitutions,
@@ -13,10 +14,21 @@ from launch.substitution import (
 )
 
 if TYPE_CHECKING:
+    from launch.frontend.entity import Entity
+    from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
 
 
+@expose_action('arg')
 class DeclareLaunchArgument(Action):
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        choices = [child.get('value', required=True) for child in entity.children_of('choice')]
+        kwargs = {'name': entity.get('name', required=True),
+                  'default_value': entity.get_substitutions('default'),
+                  'description': entity.get('description'), 'choices': choices or None}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
+
     def __init__(self, name: str, *, default_value: SomeSubstitutionsType | None = None,
                  description: str | None = None, choices: Iterable[str] | None = None,
                  **kwargs: Any) -> None:

@@ -31,6 +31,7 @@ from launch.events.process import (
     ShutdownProcess,
     SignalProcess,
 )
+from launch.frontend.expose import expose_action
 from launch.logging import get_logger, process_output
 from launch.substitution import (
     SomeSubstitutionsType,
@@ -40,6 +41,8 @@ from launch.substitution import (
 from launch.substitutions import LaunchConfiguration
 
 if TYPE_CHECKING:
+    from launch.frontend.entity import Entity
+    from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
 
 _PR_SET_PDEATHSIG = 1
@@ -69,7 +72,46 @@ class _ProcessDescription:
         self.final_cmd = cmd
 
 
+@expose_action('executable')
 class ExecuteProcess(Action):
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        from launch.frontend.entity import FrontendError
+        cmd = entity.get_words('cmd')
+        if not cmd:
+            raise FrontendError("<executable> needs the attribute 'cmd'")
+        extra = entity.get_words('args') or []
+        kwargs = {'cmd': cmd + extra, 'name': entity.get_substitutions('name'),
+                  'shell': entity.get_bool('shell', False)}
+        return cls, {**kwargs, **cls.parse_process_options(entity)}
+
+    @classmethod
+    def parse_process_options(cls, entity: Entity) -> dict[str, Any]:
+        """What every process tag (executable, node) may set: condition, output, env, ..."""
+        from launch.frontend.parse_substitution import parse_substitutions
+        options: dict[str, Any] = dict(cls.parse_condition(entity))
+        for attribute, key in (('output', 'output'), ('launch-prefix', 'prefix'),
+                               ('launch_prefix', 'prefix'), ('cwd', 'cwd'),
+                               ('sigterm_timeout', 'sigterm_timeout'),
+                               ('sigkill_timeout', 'sigkill_timeout')):
+            value = entity.get_substitutions(attribute)
+            if value is not None:
+                options[key] = value
+        if entity.get('respawn') is not None:
+            options['respawn'] = parse_substitutions(entity.get('respawn'))
+        if entity.get('respawn_delay') is not None:
+            options['respawn_delay'] = float(entity.get('respawn_delay'))
+        if entity.get('emulate_tty') is not None:
+            options['emulate_tty'] = entity.get_bool('emulate_tty', False)
+        env = {}
+        for child in entity.children_of('env'):
+            env[tuple(child.get_substitutions('name', True))] = child.get_substitutions(
+                'value', True)
+            child.check_all_used()
+        if env:
+            options['additional_env'] = env
+        return options
+
     def __init__(
         self, *,
         cmd: Iterable[SomeSubstitutionsType],

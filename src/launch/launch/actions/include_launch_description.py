@@ -8,10 +8,13 @@ from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
 from launch.actions.simple import SetLaunchConfiguration
+from launch.frontend.expose import expose_action
 from launch.launch_description_entity import LaunchDescriptionEntity
 from launch.substitution import normalize_to_list_of_substitutions, perform_substitutions
 
 if TYPE_CHECKING:
+    from launch.frontend.entity import Entity
+    from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
 
 
@@ -30,7 +33,23 @@ class _Locals(LaunchDescriptionEntity):
         return None
 
 
+@expose_action('include')
 class IncludeLaunchDescription(Action):
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        from launch.frontend.entity import FrontendError
+        from launch.launch_description_sources import AnyLaunchDescriptionSource
+        arguments = []
+        for child in entity.children:
+            if child.tag != 'arg':
+                raise FrontendError(f'<include> holds <arg> elements only, got <{child.tag}>')
+            arguments.append((child.get('name', required=True),
+                              child.get_substitutions('value', required=True)))
+            child.check_all_used()
+        source = AnyLaunchDescriptionSource(entity.get_substitutions('file', True))
+        kwargs = {'launch_description_source': source, 'launch_arguments': arguments}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
+
     def __init__(self, launch_description_source: Any, *,
                  launch_arguments: Iterable[tuple[Any, Any]] | dict | None = None,
                  **kwargs: Any) -> None:

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 from launch.action import Action
 from launch.event import Event
 from launch.event_handler import BaseEventHandler
+from launch.frontend.expose import expose_action
 from launch.logging import get_logger
 from launch.substitution import (
     SomeSubstitutionsType,
@@ -17,11 +18,20 @@ from launch.substitution import (
 )
 
 if TYPE_CHECKING:
+    from launch.frontend.entity import Entity
+    from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
     from launch.launch_description_entity import LaunchDescriptionEntity
 
 
+@expose_action('let')
 class SetLaunchConfiguration(Action):
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        kwargs = {'name': entity.get('name', required=True),
+                  'value': entity.get_substitutions('value', required=True)}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
+
     def __init__(self, name: SomeSubstitutionsType, value: SomeSubstitutionsType,
                  **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -80,8 +90,15 @@ class PopEnvironment(Action):
         context._pop_environment()
 
 
+@expose_action('set_env')
 class SetEnvironmentVariable(Action):
     """Sets an environment variable for the processes started after it (in its scope)."""
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        kwargs = {'name': entity.get_substitutions('name', True),
+                  'value': entity.get_substitutions('value', True)}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
 
     def __init__(self, name: SomeSubstitutionsType, value: SomeSubstitutionsType,
                  **kwargs: Any) -> None:
@@ -97,7 +114,13 @@ class SetEnvironmentVariable(Action):
         return f'SetEnvironmentVariable({describe(self.name)}, {describe(self.value)})'
 
 
+@expose_action('unset_env')
 class UnsetEnvironmentVariable(Action):
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        kwargs = {'name': entity.get_substitutions('name', True)}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
+
     def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
@@ -124,8 +147,19 @@ class AppendEnvironmentVariable(Action):
         context.environment[name] = value
 
 
+@expose_action('group')
 class GroupAction(Action):
     """Actions run together; scoped (default) keeps their configurations and environment in."""
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        keep = {child.get('name', required=True): child.get_substitutions('value', required=True)
+                for child in entity.children_of('keep')}
+        actions = [parser.parse_action(child) for child in entity.children if child.tag != 'keep']
+        kwargs = {'actions': actions, 'scoped': entity.get_bool('scoped', True),
+                  'forwarding': entity.get_bool('forwarding', True),
+                  'launch_configurations': keep or None}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
 
     def __init__(self, actions: Iterable[Action], *, scoped: bool = True,
                  forwarding: bool = True, launch_configurations: dict | None = None,
@@ -153,8 +187,14 @@ class GroupAction(Action):
                 PopEnvironment(), PopLaunchConfigurations()]
 
 
+@expose_action('log')
 class LogInfo(Action):
     """Logs a message as `[INFO] [launch.user]: ...`."""
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        kwargs = {'msg': entity.get_substitutions('message', True)}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
 
     def __init__(self, *, msg: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -181,8 +221,14 @@ class EmitEvent(Action):
         return f'EmitEvent({type(self.event).__name__})'
 
 
+@expose_action('shutdown')
 class Shutdown(EmitEvent):
     """Shuts the launch down (every process gets SIGINT, then SIGTERM, then SIGKILL)."""
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        kwargs = {'reason': entity.get_substitutions('reason') or 'reason not given'}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
 
     def __init__(self, *, reason: SomeSubstitutionsType = 'reason not given',
                  **kwargs: Any) -> None:

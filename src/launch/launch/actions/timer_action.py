@@ -10,6 +10,7 @@ from launch.action import Action
 from launch.actions.simple import PopLaunchConfigurations, PushLaunchConfigurations
 from launch.event_handler import EventHandler
 from launch.events import Shutdown, TimerEvent
+from launch.frontend.expose import expose_action
 from launch.substitution import (
     SomeSubstitutionsType,
     normalize_to_list_of_substitutions,
@@ -17,6 +18,8 @@ from launch.substitution import (
 )
 
 if TYPE_CHECKING:
+    from launch.frontend.entity import Entity
+    from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
     from launch.launch_description_entity import LaunchDescriptionEntity
 
@@ -31,7 +34,14 @@ class _RestoreConfigurations(Action):
         context.launch_configurations.update(self.configurations)
 
 
+@expose_action('timer')
 class TimerAction(Action):
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        kwargs = {'period': entity.get_substitutions('period', True),
+                  'actions': parser.parse_children(entity)}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
+
     def __init__(self, *, period: float | SomeSubstitutionsType,
                  actions: Iterable[LaunchDescriptionEntity], cancel_on_shutdown: bool = True,
                  **kwargs: Any) -> None:

@@ -52,6 +52,8 @@ class LaunchDescriptionSource:
 class _FileSource(LaunchDescriptionSource):
     """A launch description loaded from a file path (substitutions allowed)."""
 
+    file_format: str | None = None  # 'py', 'xml', 'yaml'; None: told by the file's name
+
     def __init__(self, launch_file_path: SomeSubstitutionsType, method: str) -> None:
         super().__init__(None, '<not yet performed>', method)
         self._path = normalize_to_list_of_substitutions(launch_file_path)
@@ -64,40 +66,23 @@ class _FileSource(LaunchDescriptionSource):
         if self._launch_description is None:
             path = perform_substitutions(context, self._path)
             self._location = path
-            self._launch_description = load_launch_file(path, self._kind())
+            self._launch_description = load_launch_file(path, self.file_format)
         return self._launch_description
-
-    def _kind(self) -> str | None:
-        return None
 
 
 class PythonLaunchDescriptionSource(_FileSource):
+    file_format = 'py'
+
     def __init__(self, launch_file_path: SomeSubstitutionsType) -> None:
         super().__init__(launch_file_path, 'interpreted python launch file')
 
-    def _kind(self) -> str:
-        return 'py'
-
 
 class FrontendLaunchDescriptionSource(_FileSource):
-    def __init__(self, launch_file_path: SomeSubstitutionsType) -> None:
-        super().__init__(launch_file_path, 'interpreted frontend launch file')
+    """An XML or YAML file (launch_xml's and launch_yaml's sources fix the format)."""
 
-
-class XMLLaunchDescriptionSource(_FileSource):
-    def __init__(self, launch_file_path: SomeSubstitutionsType) -> None:
-        super().__init__(launch_file_path, 'interpreted XML launch file')
-
-    def _kind(self) -> str:
-        return 'xml'
-
-
-class YAMLLaunchDescriptionSource(_FileSource):
-    def __init__(self, launch_file_path: SomeSubstitutionsType) -> None:
-        super().__init__(launch_file_path, 'interpreted YAML launch file')
-
-    def _kind(self) -> str:
-        return 'yaml'
+    def __init__(self, launch_file_path: SomeSubstitutionsType, *,
+                 method: str = 'interpreted frontend launch file') -> None:
+        super().__init__(launch_file_path, method)
 
 
 class AnyLaunchDescriptionSource(_FileSource):
@@ -125,7 +110,7 @@ def load_launch_file(path: str, kind: str | None = None) -> LaunchDescription:
     try:
         if kind == 'py':
             return _load_python(path)
-        from launch.frontend import load_frontend_file
+        from launch.frontend.parser import load_frontend_file
         return load_frontend_file(path, kind)
     except InvalidLaunchFileError:
         raise
@@ -160,7 +145,6 @@ def get_launch_description_from_python_launch_file(path: str) -> LaunchDescripti
 
 __all__ = ['AnyLaunchDescriptionSource', 'FrontendLaunchDescriptionSource',
            'InvalidLaunchFileError', 'LaunchDescriptionSource', 'PythonLaunchDescriptionSource',
-           'XMLLaunchDescriptionSource', 'YAMLLaunchDescriptionSource',
            'get_launch_description_from_any_launch_file',
            'get_launch_description_from_python_launch_file', 'load_launch_file']
 

@@ -12,6 +12,7 @@ import uuid
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
+from launch.frontend.expose import expose_substitution, one_argument
 from launch.substitution import (
     SomeSubstitutionsType,
     Substitution,
@@ -25,8 +26,15 @@ if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
 
+@expose_substitution('var')
 class LaunchConfiguration(Substitution):
     """The value of a launch configuration (a launch argument, or one set by an action)."""
+
+    @classmethod
+    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
+        if len(data) == 2:
+            return cls, {'variable_name': data[0], 'default': data[1]}
+        return cls, {'variable_name': one_argument('var', data)}
 
     def __init__(self, variable_name: SomeSubstitutionsType,
                  *, default: SomeSubstitutionsType | None = None) -> None:
@@ -67,8 +75,13 @@ class PathJoinSubstitution(Substitution):
         return 'PathJoin(' + ', '.join(describe(part) for part in self.substitutions) + ')'
 
 
+@expose_substitution('env')
 class EnvironmentVariable(Substitution):
     """An environment variable of the launched processes' environment."""
+
+    @classmethod
+    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
+        return cls, {'name': data[0], 'default_value': data[1] if len(data) > 1 else None}
 
     def __init__(self, name: SomeSubstitutionsType,
                  *, default_value: SomeSubstitutionsType | None = None) -> None:
@@ -89,8 +102,13 @@ class EnvironmentVariable(Substitution):
         return f'EnvVar({describe(self.name)})'
 
 
+@expose_substitution('find-exec')
 class FindExecutable(Substitution):
     """The full path of an executable found on the PATH."""
+
+    @classmethod
+    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
+        return cls, {'name': one_argument('find-exec', data)}
 
     def __init__(self, *, name: SomeSubstitutionsType) -> None:
         self.name = normalize_to_list_of_substitutions(name)
@@ -106,8 +124,13 @@ class FindExecutable(Substitution):
         return f'FindExec({describe(self.name)})'
 
 
+@expose_substitution('eval')
 class PythonExpression(Substitution):
     """The text of a Python expression's value (modules: math by default)."""
+
+    @classmethod
+    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
+        return cls, {'expression': one_argument('eval', data)}
 
     def __init__(self, expression: SomeSubstitutionsType,
                  python_modules: SomeSubstitutionsType | Iterable[Any] = ('math',)) -> None:
@@ -166,20 +189,35 @@ class _LaunchFileLocal(Substitution):
         return value
 
 
+@expose_substitution('dirname')
 class ThisLaunchFileDir(_LaunchFileLocal):
     """The directory of the launch file being loaded."""
+
+    @classmethod
+    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
+        return cls, {}
 
     key = 'current_launch_file_directory'
 
 
+@expose_substitution('filename')
 class ThisLaunchFile(_LaunchFileLocal):
     """The path of the launch file being loaded."""
+
+    @classmethod
+    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
+        return cls, {}
 
     key = 'current_launch_file_path'
 
 
+@expose_substitution('command')
 class Command(Substitution):
     """The standard output of a command run when the substitution is performed."""
+
+    @classmethod
+    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
+        return cls, {'command': data[0], 'on_stderr': data[1] if len(data) > 1 else 'fail'}
 
     def __init__(self, command: SomeSubstitutionsType, *,
                  on_stderr: SomeSubstitutionsType = 'fail') -> None:
@@ -203,8 +241,13 @@ class Command(Substitution):
         return result.stdout
 
 
+@expose_substitution('anon')
 class AnonName(Substitution):
     """A name made unique for this launch, the same text for the same name."""
+
+    @classmethod
+    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
+        return cls, {'name': one_argument('anon', data)}
 
     def __init__(self, name: SomeSubstitutionsType) -> None:
         self.name = normalize_to_list_of_substitutions(name)

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 import yaml
 from launch.actions import ExecuteProcess
+from launch.frontend.expose import expose_action
 from launch.substitution import (
     SomeSubstitutionsType,
     normalize_to_list_of_substitutions,
@@ -21,6 +22,8 @@ from launch_ros.parameter_descriptions import ParameterFile, evaluate_value
 from launch_ros.substitutions import ExecutableInPackage
 
 if TYPE_CHECKING:
+    from launch.frontend.entity import Entity
+    from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
 
 _NAME = re.compile(r'^[A-Za-z_][A-Za-z0-9_]*$')
@@ -42,7 +45,43 @@ def make_absolute(namespace: str | None) -> str | None:
     return namespace if namespace.startswith('/') else '/' + namespace
 
 
+@expose_action('node')
 class Node(ExecuteProcess):
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        from launch.frontend.entity import FrontendError
+        parameters: list[Any] = []
+        values: dict[str, Any] = {}
+        for child in entity.children_of('param'):
+            if child.get('from') is not None:
+                parameters.append(child.get_substitutions('from'))
+            else:
+                value = child.get('value', required=True)
+                values[child.get('name', required=True)] = (
+                    value if isinstance(value, (bool, int, float, list))
+                    else parser.parse_substitution(value))
+            child.check_all_used()
+        if values:
+            parameters.insert(0, values)
+        remappings = []
+        for child in entity.children_of('remap'):
+            remappings.append((child.get_substitutions('from', True),
+                               child.get_substitutions('to', True)))
+            child.check_all_used()
+        for child in entity.children:
+            if child.tag not in ('param', 'remap', 'env'):
+                raise FrontendError(f'<node> cannot hold <{child.tag}>')
+        namespace = entity.get('namespace', entity.get('ns'))
+        kwargs = {'package': entity.get_substitutions('pkg'),
+                  'executable': entity.get_substitutions('exec', True),
+                  'name': entity.get_substitutions('name'),
+                  'namespace': None if namespace is None else parser.parse_substitution(namespace),
+                  'exec_name': entity.get_substitutions('exec_name'),
+                  'arguments': entity.get_words('args'),
+                  'ros_arguments': entity.get_words('ros_args'),
+                  'parameters': parameters or None, 'remappings': remappings or None}
+        return cls, {**kwargs, **cls.parse_process_options(entity)}
+
     UNSPECIFIED_NODE_NAME = '<node_name_unspecified>'
     UNSPECIFIED_NODE_NAMESPACE = '<node_namespace_unspecified>'
 

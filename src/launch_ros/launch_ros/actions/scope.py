@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
+from launch.frontend.expose import expose_action
 from launch.substitution import (
     SomeSubstitutionsType,
     normalize_to_list_of_substitutions,
@@ -15,6 +16,8 @@ from launch_ros.actions.node import make_absolute, prefix_namespace
 from launch_ros.parameter_descriptions import evaluate_value
 
 if TYPE_CHECKING:
+    from launch.frontend.entity import Entity
+    from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
 
 
@@ -22,8 +25,14 @@ def _text(context: LaunchContext, value: SomeSubstitutionsType) -> str:
     return perform_substitutions(context, normalize_to_list_of_substitutions(value))
 
 
+@expose_action('push-ros-namespace')
 class PushROSNamespace(Action):
     """Puts the following nodes (with relative namespaces) under this namespace."""
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        kwargs = {'namespace': entity.get_substitutions('namespace', True)}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
 
     def __init__(self, namespace: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -39,8 +48,15 @@ class PushROSNamespace(Action):
 PushRosNamespace = PushROSNamespace
 
 
+@expose_action('set_parameter')
 class SetParameter(Action):
     """A parameter given to every node after it (`-p name:=value`)."""
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        kwargs = {'name': entity.get('name', required=True),
+                  'value': entity.get_substitutions('value', True)}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
 
     def __init__(self, name: SomeSubstitutionsType, value: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -69,8 +85,15 @@ class SetParametersFromFile(Action):
             *params, _text(context, self.filename))
 
 
+@expose_action('set_remap')
 class SetRemap(Action):
     """A remapping rule given to every node after it."""
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        kwargs = {'src': entity.get_substitutions('from', True),
+                  'dst': entity.get_substitutions('to', True)}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
 
     def __init__(self, src: SomeSubstitutionsType, dst: SomeSubstitutionsType,
                  **kwargs: Any) -> None:

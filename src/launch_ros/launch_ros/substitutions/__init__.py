@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from launch._missing import module_getattr
+from launch.frontend.expose import expose_substitution, one_argument
 from launch.substitution import (
     SomeSubstitutionsType,
     Substitution,
@@ -19,8 +20,13 @@ if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
 
+@expose_substitution('find-pkg-prefix')
 class FindPackagePrefix(Substitution):
     """The install prefix of a package."""
+
+    @classmethod
+    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
+        return cls, {'package': one_argument('find-pkg-prefix', data)}
 
     def __init__(self, package: SomeSubstitutionsType) -> None:
         self.package = normalize_to_list_of_substitutions(package)
@@ -36,16 +42,26 @@ class FindPackagePrefix(Substitution):
         return f'Pkg(pkg={describe(self.package)})'
 
 
+@expose_substitution('find-pkg-share')
 class FindPackageShare(FindPackagePrefix):
     """The share directory of a package."""
+
+    @classmethod
+    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
+        return cls, {'package': one_argument('find-pkg-share', data)}
 
     def find(self, package: str) -> str:
         from ament_index_python.packages import get_package_share_directory
         return get_package_share_directory(package)
 
 
+@expose_substitution('exec-in-pkg')
 class ExecutableInPackage(FindPackagePrefix):
     """lib/<package>/<executable>, found as `ros2 run` finds it."""
+
+    @classmethod
+    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
+        return cls, {'executable': data[0], 'package': data[1]}
 
     def __init__(self, executable: SomeSubstitutionsType, package: SomeSubstitutionsType
                  ) -> None:

@@ -1,0 +1,111 @@
+"""Upstream's substitution syntax in attribute values: `$(var name)`, `$(find-pkg-share p)/x`.
+
+Each `$(name args...)` becomes the substitution registered for `name` (expose_substitution);
+arguments may be quoted and may hold substitutions themselves.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from launch.frontend.entity import FrontendError
+from launch.frontend.expose import instantiate_substitution
+from launch.substitution import Substitution, TextSubstitution
+
+
+def parse_substitutions(text: Any) -> list[Substitution]:
+    """The substitutions of an attribute value (text, or a YAML bool/number)."""
+    from launch.frontend.parser import Parser
+    Parser.load_launch_extensions()  # the `$(name)` registrations
+    if isinstance(text, bool):
+        text = str(text).lower()
+    text = str(text)
+    return _parse_text(text, 0, stop=None)[0]
+
+
+def _parse_text(text: str, i: int, stop: str | None) -> tuple[list[Substitution], int]:
+    parts: list[Substitution] = []
+    literal = ''
+    while i < len(text):
+        if text.startswith('$(', i):
+            if literal:
+                parts.append(TextSubstitution(text=literal))
+                literal = ''
+            sub, i = _parse_call(text, i + 2)
+            parts.append(sub)
+            continue
+        if stop is not None and text[i] in stop:
+            break
+        literal += text[i]
+        i += 1
+    if literal:
+        parts.append(TextSubstitution(text=literal))
+    return parts, i
+
+
+def _parse_call(text: str, i: int) -> tuple[Substitution, int]:
+    start = i
+    while i < len(text) and not text[i].isspace() and text[i] != ')':
+        i += 1
+    name = text[start:i]
+    args: list[list[Substitution]] = []
+    while True:
+        while i < len(text) and text[i].isspace():
+            i += 1
+        if i >= len(text):
+            raise FrontendError(f"unterminated substitution '$({text[start:]}'")
+        if text[i] == ')':
+            i += 1
+            break
+        if text[i] in '\'"':
+            quote = text[i]
+            arg, i = _parse_text(text, i + 1, stop=quote)
+            i += 1
+        else:
+            arg, i = _parse_text(text, i, stop=' \t\n)')
+        args.append(arg)
+    return instantiate_substitution(name, args), i
+
+
+def split_command_line(parts: list[Substitution]) -> list[list[Substitution]]:
+    """Words of a command line, shell-like (quotes, spaces), substitutions kept whole."""
+    words: list[list[Substitution]] = []
+    word: list[Substitution] = []
+    text = ''
+    quote = ''
+    started = False
+
+    def flush_text() -> None:
+        nonlocal text
+        if text:
+            word.append(TextSubstitution(text=text))
+            text = ''
+
+    for part in parts:
+        if not isinstance(part, TextSubstitution):
+            flush_text()
+            word.append(part)
+            started = True
+            continue
+        for char in part.text:
+            if quote:
+                if char == quote:
+                    quote = ''
+                else:
+                    text += char
+            elif char in '\'"':
+                quote, started = char, True
+            elif char.isspace():
+                flush_text()
+                if started:
+                    words.append(word)
+                word, started = [], False
+            else:
+                text += char
+                started = True
+    if quote:
+        raise FrontendError(f'unterminated quote in command line: {quote}')
+    flush_text()
+    if started:
+        words.append(word)
+    return words

@@ -1,1 +1,0 @@
-"""launch_yaml: upstream's module path for YAML launch files (parsed by launch.frontend)."""

@@ -1,0 +1,223 @@
+"""The workspace's package layout stays as docs/architecture.md draws it.
+
+Every src/ package's Python (modules, launch files, scripts with a python shebang) is parsed
+and each import of another workspace package becomes an edge between packages. The tests
+fail on a cycle between packages, on an edge its package.xml does not declare, on turtlesim
+(the simulator, a leaf upstream) importing any workspace package but node_runtime, and on
+my_robot_controller's nodes importing more than interfaces and node_runtime. Launch files
+(`*.launch.py`) count for cycles and package.xml, not for those two rules: a launch file is
+run by `ros2 launch`, it is no part of a node.
+
+`python tests/test_layout.py` prints the dependency table (docs/architecture.md).
+"""
+
+from __future__ import annotations
+
+import ast
+import sys
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+SRC = REPO / 'src'
+DEPEND_TAGS = ('depend', 'build_depend', 'build_export_depend', 'exec_depend', 'test_depend',
+               'buildtool_depend', 'run_depend')
+IMPORT_FUNCTIONS = ('import_module', '__import__')  # importlib.import_module('pkg.mod') too
+# Workspace modules a package's code (launch files aside) may import besides its own.
+ALLOWED_IN_CODE = {
+    'node_runtime': set(),  # the runtime library under every node
+    'turtlesim': {'node_runtime'},  # the simulator: a leaf, as upstream
+    # the course's nodes, as a learner's package: interfaces and the runtime library
+    'my_robot_controller': {'node_runtime', 'turtlesim', 'example_interfaces'},
+}
+# A package's internals: importable, but by no other package (the simulator's code).
+PRIVATE_MODULES = {'turtlesim_py': 'turtlesim'}
+
+
+@dataclass
+class Package:
+    name: str
+    path: Path
+    declared: set[str]
+    modules: set[str] = field(default_factory=set)  # top-level import names it provides
+    # imported workspace package -> where (file:line), first occurrence of each
+    imports: dict[str, str] = field(default_factory=dict)
+    # workspace module -> where, imported by code that is no launch file
+    code_imports: dict[str, str] = field(default_factory=dict)
+    modules_imported: dict[str, str] = field(default_factory=dict)  # every workspace module
+
+
+def find_packages() -> dict[str, Package]:
+    packages = {}
+    for manifest in sorted(SRC.rglob('package.xml')):
+        if any(part in ('build', 'install', 'log', 'templates') for part in
+               manifest.relative_to(SRC).parts):
+            continue
+        root = ET.parse(manifest).getroot()
+        name = root.findtext('name', '').strip()
+        declared = {element.text.strip() for tag in DEPEND_TAGS for element in root.iter(tag)
+                    if element.text}
+        package = Package(name, manifest.parent, declared)
+        # An interface package's generated module, or an ament_python package's own name.
+        package.modules.add(name)
+        package.modules.update(child.name for child in manifest.parent.iterdir()
+                               if (child / '__init__.py').is_file())
+        packages[name] = package
+    return packages
+
+
+def python_files(package: Package, packages: dict[str, Package]) -> list[Path]:
+    """The package's Python files, not those of a package nested inside it."""
+    nested = [other.path for other in packages.values()
+              if other.path != package.path and package.path in other.path.parents]
+    files = []
+    for path in sorted(package.path.rglob('*')):
+        if not path.is_file() or any(root == path or root in path.parents for root in nested):
+            continue
+        if path.suffix == '.py' or (not path.suffix and _has_python_shebang(path)):
+            files.append(path)
+    return files
+
+
+def _has_python_shebang(path: Path) -> bool:
+    try:
+        with open(path, 'rb') as handle:
+            first = handle.readline(200)
+    except OSError:
+        return False
+    return first.startswith(b'#!') and b'python' in first
+
+
+def imported_names(path: Path) -> list[tuple[str, int]]:
+    """(top-level module name, line) of every absolute import, also inside functions."""
+    tree = ast.parse(path.read_text(), filename=str(path))
+    names = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            names += [(alias.name.split('.')[0], node.lineno) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            names.append((node.module.split('.')[0], node.lineno))
+        elif (isinstance(node, ast.Call) and node.args
+              and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)
+              and getattr(node.func, 'attr', getattr(node.func, 'id', None))
+              in IMPORT_FUNCTIONS):
+            names.append((node.args[0].value.split('.')[0], node.lineno))
+    return names
+
+
+def scan() -> dict[str, Package]:
+    packages = find_packages()
+    owner = {module: package.name for package in packages.values()
+             for module in package.modules}
+    for package in packages.values():
+        for path in python_files(package, packages):
+            for module, line in imported_names(path):
+                target = owner.get(module)
+                if target is None or target == package.name:
+                    continue
+                where = f'{path.relative_to(REPO)}:{line}'
+                package.imports.setdefault(target, where)
+                package.modules_imported.setdefault(module, where)
+                if not path.name.endswith('.launch.py'):
+                    package.code_imports.setdefault(module, where)
+    return packages
+
+
+def cycles(packages: dict[str, Package]) -> list[list[str]]:
+    """Strongly connected components of more than one package (Tarjan)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    found = []
+
+    def visit(name: str) -> None:
+        index[name] = low[name] = len(index)
+        stack.append(name)
+        on_stack.add(name)
+        for target in packages[name].imports:
+            if target not in index:
+                visit(target)
+                low[name] = min(low[name], low[target])
+            elif target in on_stack:
+                low[name] = min(low[name], index[target])
+        if low[name] == index[name]:
+            component = []
+            while True:
+                member = stack.pop()
+                on_stack.discard(member)
+                component.append(member)
+                if member == name:
+                    break
+            if len(component) > 1:
+                found.append(sorted(component))
+
+    for name in sorted(packages):
+        if name not in index:
+            visit(name)
+    return found
+
+
+def table(packages: dict[str, Package]) -> str:
+    lines = ['| package | imports (workspace packages) | not in package.xml |', '|---|---|---|']
+    for name in sorted(packages):
+        package = packages[name]
+        imports = sorted(package.imports)
+        undeclared = [target for target in imports if target not in package.declared]
+        lines.append(f"| {name} | {', '.join(imports) or '-'} | {', '.join(undeclared) or '-'} |")
+    return '\n'.join(lines)
+
+
+def test_no_import_cycle_between_packages():
+    found = cycles(scan())
+    assert found == [], f'import cycles between packages: {found}\n{table(scan())}'
+
+
+def test_every_cross_package_import_is_declared_in_package_xml():
+    missing = [f'{package.name} imports {target} ({where}) without declaring it in '
+               f'{package.path.relative_to(REPO)}/package.xml'
+               for package in scan().values()
+               for target, where in sorted(package.imports.items())
+               if target not in package.declared]
+    assert missing == [], '\n'.join(missing)
+
+
+def test_turtlesim_and_the_course_nodes_import_only_what_they_may():
+    packages = scan()
+    for name, allowed in sorted(ALLOWED_IN_CODE.items()):
+        extra = {module: where for module, where in packages[name].code_imports.items()
+                 if module not in allowed}
+        assert extra == {}, f'{name} may import only {sorted(allowed)} of the workspace'
+
+
+def test_no_package_imports_another_packages_internals():
+    # e.g. the runtime helpers once lived in turtlesim_py: they are node_runtime's now.
+    found = [f'{package.name} imports {module} ({where}), internal to {PRIVATE_MODULES[module]}'
+             for package in scan().values()
+             for module, where in sorted(package.modules_imported.items())
+             if PRIVATE_MODULES.get(module, package.name) != package.name]
+    assert found == [], '\n'.join(found)
+
+
+def test_the_checker_sees_imports_inside_functions_and_scripts():
+    # The checker itself: a lazy import in a function and a script without .py both count.
+    packages = scan()
+    assert 'turtlesim' in packages and 'rqt_web' in packages
+    script = SRC / 'turtlesim' / 'scripts' / 'turtlesim_node'
+    assert script in python_files(packages['turtlesim'], packages)
+    tree = 'def f():\n    import os.path\n    importlib.import_module("json.decoder")\n'
+    probe = REPO / 'build' / 'test_layout_probe.py'
+    probe.parent.mkdir(exist_ok=True)
+    probe.write_text(tree)
+    try:
+        assert [name for name, _ in imported_names(probe)] == ['os', 'json']
+    finally:
+        probe.unlink()
+
+
+if __name__ == '__main__':
+    found = scan()
+    print(table(found))
+    print(f'\nimport cycles between packages: {cycles(found) or 0}')
+    sys.exit(0)
