@@ -8,7 +8,8 @@ my_robot_controller's nodes importing more than interfaces and node_runtime. Lau
 (`*.launch.py`) count for cycles and package.xml, not for those two rules: a launch file is
 run by `ros2 launch`, it is no part of a node.
 
-`python tests/test_layout.py` prints the dependency table (docs/architecture.md).
+`python tests/test_layout.py [--mermaid]` prints the dependency table (or the drawing) of
+docs/architecture.md.
 """
 
 from __future__ import annotations
@@ -216,8 +217,19 @@ def test_the_checker_sees_imports_inside_functions_and_scripts():
         probe.unlink()
 
 
+def mermaid(packages: dict[str, Package]) -> str:
+    """`A --> B`: A imports B (packages that import and are imported by nothing left out)."""
+    lines = ['graph LR']
+    for name in sorted(packages):
+        lines += [f'    {name} --> {target}' for target in sorted(packages[name].imports)]
+    return '\n'.join(lines)
+
+
 if __name__ == '__main__':
     found = scan()
-    print(table(found))
-    print(f'\nimport cycles between packages: {cycles(found) or 0}')
+    if '--mermaid' in sys.argv:
+        print(mermaid(found))
+    else:
+        print(table(found))
+        print(f'\nimport cycles between packages: {cycles(found) or 0}')
     sys.exit(0)

@@ -13,7 +13,8 @@ import threading
 import time
 from typing import Any
 
-from ros2cli_lite.api import import_type, wait_for_graph
+from ros2cli_lite.api import import_type
+from ros2cli_lite.node import wait_for_graph
 
 from ros2bag.metadata import (
     BagError,
@@ -270,7 +271,7 @@ class Player:
         deadline = time.monotonic() + ACK_BOUND
         if self.pending:
             # Spinning takes the answers in: a request is only sure to have arrived then.
-            from ros2cli_lite.api import spin_once
+            from ros2cli_lite.node import spin_once
             while not all(f.done() for f in self.pending) and time.monotonic() < deadline:
                 spin_once(self.node, 0.05)
         for publisher in self.publishers.values():

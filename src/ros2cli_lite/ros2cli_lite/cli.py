@@ -78,9 +78,6 @@ def _dispatch(argv: list[str]) -> int | str:
         parser.print_help()
         return 0
     func = getattr(args, '_main', None)
-    if getattr(args, 'spin_time', None) is not None:
-        from ros2cli_lite import api
-        api.SPIN_TIME = max(0.0, args.spin_time)
     if func is None:
         parser.parse_args([args._command, '--help'])
         return 0

@@ -134,11 +134,14 @@ class GraphSource:
 
 
 class _DaemonSource(GraphSource):
+    def __init__(self, spin_time: float | None = None) -> None:
+        self.spin_time = spin_time
+
     def graph(self, detail: bool = False, ready: Callable[[Graph], bool] | None = None,
               bound: float | None = None) -> Graph:
         from ros2cli_lite.daemon.client import request
         if bound is None:
-            bound = _lookup_bound()
+            bound = _lookup_bound(self.spin_time)
         deadline = time.monotonic() + bound
         while True:
             graph = Graph(request({'op': 'graph', 'detail': detail})['graph'])
@@ -155,12 +158,15 @@ class _DaemonSource(GraphSource):
 class _DirectSource(GraphSource):
     """Today's daemon-less discovery: a fresh hidden node that waits for the graph to settle."""
 
-    def __init__(self, node: Any) -> None:
+    def __init__(self, node: Any, spin_time: float | None = None) -> None:
         self.node = node
+        self.spin_time = spin_time
 
     def graph(self, detail: bool = False, ready: Callable[[Graph], bool] | None = None,
               bound: float | None = None) -> Graph:
-        from ros2cli_lite.api import wait_for_graph
+        from ros2cli_lite.node import wait_for_graph
+        if bound is None:
+            bound = self.spin_time
         if ready is None:
             wait_for_graph(self.node, bound=bound)
         else:
@@ -172,23 +178,26 @@ class _DirectSource(GraphSource):
         return endpoint_texts(self.node, topic)
 
 
-def _lookup_bound() -> float:
+def _lookup_bound(spin_time: float | None) -> float:
     """How long a daemon-answered lookup waits for a named entity that is not there (yet)."""
-    from ros2cli_lite import api
     # A node that has just started can take DDS up to ~3 s to announce on a loaded machine
     # (measured): the daemon's cache is complete only for what has been announced.
-    return api.SPIN_TIME if api.SPIN_TIME is not None else 4.0
+    return spin_time if spin_time is not None else 4.0
 
 
 @contextmanager
-def graph_source(use_daemon: bool = True) -> Iterator[GraphSource]:
-    """The daemon (started on first use), or with use_daemon=False a CLI node of our own."""
+def graph_source(use_daemon: bool = True, spin_time: float | None = None
+                 ) -> Iterator[GraphSource]:
+    """The daemon (started on first use), or with use_daemon=False a CLI node of our own.
+
+    `spin_time` (a verb's --spin-time) bounds the waits for a named entity to appear.
+    """
     if use_daemon:
-        yield _DaemonSource()
+        yield _DaemonSource(spin_time)
         return
-    from ros2cli_lite.api import cli_node
-    with cli_node() as node:
-        yield _DirectSource(node)
+    from ros2cli_lite.node import cli_node
+    with cli_node(spin_time=spin_time) as node:
+        yield _DirectSource(node, spin_time)
 
 
 def get_graph(use_daemon: bool = True, detail: bool = True) -> Graph:

@@ -189,8 +189,8 @@ def graph() -> Graph:
         # Fast DDS ends the whole process when asked for a participant there.
         raise RuntimeError('ROS_DOMAIN_ID is invalid')
     if _graph is None:
-        from ros2cli_lite.api import cli_node, wait_for_graph
         from ros2cli_lite.graph import get_graph
+        from ros2cli_lite.node import cli_node, wait_for_graph
         # The daemon's settled graph says what exists; our own node (which the QoS profiles
         # need) must then see at least every endpoint the daemon sees before it is read.
         expected = get_graph(detail=False)

@@ -1,7 +1,7 @@
 """Forms generated from interface types, and the checks on what comes back from them.
 
 A form is described to the page as a list of fields (name, ROS type, kind, range, default);
-what the page sends back goes through ros2cli_lite's fill_message, the same validation as
+what the page sends back goes through ros2cli_lite's set_message_fields, the same validation as
 `ros2 service call` (type, range, unknown fields), before anything reaches ROS.
 """
 
@@ -9,13 +9,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from ros2cli_lite.api import (
+from ros2cli_lite.api import import_type
+from ros2cli_lite.convert import (
     FLOAT32_MAX,
     INTEGER_RANGES,
     FieldError,
-    fill_message,
-    import_type,
-    message_to_ordered,
+    message_to_ordereddict,
+    set_message_fields,
 )
 
 
@@ -79,7 +79,7 @@ def describe(msg_class: Any) -> list[dict]:
 
 def message_to_ordered_value(value: Any) -> Any:
     if hasattr(value, 'get_fields_and_field_types'):
-        return message_to_ordered(value)
+        return message_to_ordereddict(value)
     if isinstance(value, (bytes, str, bool, int, float)):
         return value
     try:
@@ -92,7 +92,7 @@ def build(msg_class: Any, values: Any) -> Any:
     """A message of `msg_class` filled from the form's values; FormError names the field."""
     msg = msg_class()
     try:
-        fill_message(msg, values if values is not None else {})
+        set_message_fields(msg, values if values is not None else {})
     except FieldError as error:
         raise FormError(str(error)) from None
     return msg

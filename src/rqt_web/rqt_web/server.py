@@ -113,7 +113,7 @@ def _error(message: str) -> web.Response:
 
 async def call_service(request: web.Request) -> web.Response:
     bridge: RosBridge = request.app['bridge']
-    from ros2cli_lite.api import message_to_ordered
+    from ros2cli_lite.convert import message_to_ordereddict
     try:
         body = await _json_body(request)
         name, srv_type = str(body.get('name', '')), str(body.get('type', ''))
@@ -130,7 +130,7 @@ async def call_service(request: web.Request) -> web.Response:
         return _error(str(error))
     except Exception as error:  # e.g. rclpy refusing the service name
         return _error(f'call failed: {error}')
-    return web.json_response({'response': message_to_ordered(response),
+    return web.json_response({'response': message_to_ordereddict(response),
                               'seconds': round(time.monotonic() - started, 4)})
 
 
@@ -347,7 +347,7 @@ class Session:
 
     def monitor_report(self) -> None:
         from rclpy.serialization import deserialize_message
-        from ros2cli_lite.api import message_to_yaml
+        from ros2cli_lite.convert import message_to_yaml
         now = time.monotonic()
         for (topic, msg_type), stats in self.monitors.items():
             arrivals = [a for a in stats['arrivals'] if a[0] >= now - MONITOR_WINDOW]
@@ -367,7 +367,7 @@ class Session:
 
     # -- actions
     async def op_goal(self, message: dict) -> None:
-        from ros2cli_lite.api import message_to_ordered
+        from ros2cli_lite.convert import message_to_ordereddict
         goal_id = str(message.get('id', ''))
         name, action_type = str(message.get('action', '')), str(message.get('type', ''))
         action_class = forms.interface_class(action_type, 'action')
@@ -381,7 +381,7 @@ class Session:
 
         def feedback(msg: Any) -> None:
             self.bridge.loop.call_soon_threadsafe(self.send, {
-                'op': 'feedback', 'id': goal_id, 'feedback': message_to_ordered(msg.feedback)})
+                'op': 'feedback', 'id': goal_id, 'feedback': message_to_ordereddict(msg.feedback)})
         sent = await self.bridge.run(lambda: client.send_goal_async(goal, feedback))
         handle = await self.bridge.to_asyncio(sent)
         if not handle.accepted:
@@ -393,7 +393,7 @@ class Session:
 
     async def _await_result(self, goal_id: str, handle: Any) -> None:
         from action_msgs.msg import GoalStatus
-        from ros2cli_lite.api import message_to_ordered
+        from ros2cli_lite.convert import message_to_ordereddict
         pending = await self.bridge.run(handle.get_result_async)
         result = await self.bridge.to_asyncio(pending)
         self.goals.pop(goal_id, None)
@@ -401,7 +401,7 @@ class Session:
                   'CANCELED', GoalStatus.STATUS_ABORTED: 'ABORTED'}.get(result.status,
                                                                         str(result.status))
         self.send({'op': 'goal_result', 'id': goal_id, 'status': status,
-                   'result': message_to_ordered(result.result)})
+                   'result': message_to_ordereddict(result.result)})
 
     async def op_cancel(self, message: dict) -> None:
         handles = ([self.goals[message['id']]] if message.get('id') in self.goals

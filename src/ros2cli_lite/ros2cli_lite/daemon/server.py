@@ -43,12 +43,12 @@ class GraphCache:
 
     def start(self) -> None:
         """Create the node and let discovery settle before the first answer (as the CLI did)."""
-        from ros2cli_lite import api
+        from ros2cli_lite import node as cli
         name = f'_ros2cli_daemon_{os.environ.get("ROS_DOMAIN_ID", "0") or "0"}_{os.getpid()}'
         created = time.monotonic()
-        context, node = api._make_node(name)
+        context, node = cli.make_node(name)
         time.sleep(max(0.0, created + FIRST_LISTEN - time.monotonic()))
-        api.wait_for_graph(node, bound=2.0)  # and until every node's endpoints have arrived
+        cli.wait_for_graph(node, bound=2.0)  # and until every node's endpoints have arrived
         with self._lock:
             self._context, self._node = context, node
             self._reused.clear()

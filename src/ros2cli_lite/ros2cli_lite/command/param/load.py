@@ -1,0 +1,55 @@
+"""ros2 param load: Load parameter file for a node."""
+
+from __future__ import annotations
+
+import argparse
+import os
+
+from ros2cli_lite.command.param.api import add_timeout, call, find_node, print_result
+
+HELP = 'Load parameter file for a node'
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('node_name', help='Name of the ROS node')
+    parser.add_argument('parameter_file', help='Parameter file')
+    parser.add_argument('--no-use-wildcard', action='store_true',
+                        help="Do not load parameters in the '/**' namespace into the node")
+    add_timeout(parser)
+
+
+def _read_parameter_file(path: str, use_wildcard: bool) -> list:
+    """The rcl_interfaces Parameters of a params file, in file order; CliError if unusable."""
+    import yaml
+    from rclpy.parameter import parameter_dict_from_yaml_file
+
+    from ros2cli_lite.api import CliError
+    from ros2cli_lite.convert import yaml_problem
+    if not os.path.isfile(path):
+        raise CliError(f"Parameter file '{path}' does not exist")
+    try:
+        return list(parameter_dict_from_yaml_file(path, use_wildcard).values())
+    except yaml.YAMLError as error:
+        raise CliError(f"Parameter file '{path}' is not valid YAML: "
+                       f'{yaml_problem(error)}') from None
+    except (RuntimeError, AttributeError, TypeError, ValueError) as error:
+        raise CliError(f"Parameter file '{path}' is not a ROS parameter file "
+                       "(expected '<node>: {ros__parameters: {name: value}}'): "
+                       f'{error}') from None
+
+
+def main(args: argparse.Namespace) -> int | str:
+    from rcl_interfaces.srv import SetParameters
+
+    from ros2cli_lite.node import cli_node
+    parameters = _read_parameter_file(args.parameter_file, not args.no_use_wildcard)
+    target = find_node(args)
+    if target is None:
+        return 'Node not found'
+    with cli_node(spin_time=args.spin_time) as node:
+        response = call(node, SetParameters, f'{target}/set_parameters',
+                         SetParameters.Request(parameters=parameters))
+    for parameter, result in zip(parameters, response.results, strict=False):
+        print_result(result, f'Set parameter {parameter.name} successful',
+                      f'Set parameter {parameter.name} failed')
+    return 0

@@ -1,0 +1,76 @@
+"""What the verbs of `ros2 topic` share."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+from ros2cli_lite.api import is_hidden
+
+HIDDEN = '--include-hidden-topics'
+
+
+def positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f'value must be a positive integer, got {text!r}')
+    return value
+
+
+def includes_hidden(args: argparse.Namespace) -> bool:
+    return bool(args.include_hidden_topics or args.include_hidden_topics_verb)
+
+
+def topics(node, include_hidden: bool) -> list[tuple[str, list[str]]]:
+    return [(name, types) for name, types in node.get_topic_names_and_types()
+            if include_hidden or not is_hidden(name)]
+
+
+def query_graph(args: argparse.Namespace, ready=None):
+    from ros2cli_lite.graph import graph_source
+    with graph_source(not args.no_daemon, args.spin_time) as source:
+        return source.graph(ready=ready)
+
+
+def lookup(node, name: str, include_hidden: bool, settle: float = 0.2,
+            spin_time: float | None = None) -> list[str] | None:
+    from ros2cli_lite.node import wait_for_graph
+
+    def types():
+        return dict(topics(node, include_hidden)).get(name)
+    wait_for_graph(node, ready=lambda: types() is not None, settle=settle, bound=spin_time)
+    return types()
+
+
+def wait_for_type(node, topic: str, spin_time: float | None = None):
+    """The message class of `topic`, waiting (with one warning) until it is published."""
+    from ros2cli_lite.api import CliError, import_type
+    from ros2cli_lite.node import spin_once
+    found = lookup(node, topic, True, settle=0.2, spin_time=spin_time)
+    warned = False
+    while found is None:
+        if not warned:
+            print(f'WARNING: topic [{topic}] does not appear to be published yet',
+                  file=sys.stderr)
+            warned = True
+        spin_once(node, 0.2)
+        found = dict(topics(node, True)).get(topic)
+    try:
+        return import_type(found[0], 'msg')
+    except ValueError:
+        raise CliError(f"The message type '{found[0]}' is invalid") from None
+
+
+def report_every_second(node, report) -> None:
+    """Spin `node` until Ctrl-C, calling report() once a second (ros2cli's 1 s timer)."""
+    from ros2cli_lite.node import spin_once
+    next_report = time.monotonic() + 1.0
+    while True:
+        spin_once(node, max(0.0, min(0.1, next_report - time.monotonic())))
+        if time.monotonic() >= next_report:
+            next_report += 1.0
+            report()

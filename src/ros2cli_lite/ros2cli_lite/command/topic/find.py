@@ -1,0 +1,23 @@
+"""ros2 topic find: Output a list of available topics of a given type."""
+
+from __future__ import annotations
+
+import argparse
+
+from ros2cli_lite.api import print_names
+from ros2cli_lite.command.topic.api import includes_hidden, query_graph
+
+HELP = 'Output a list of available topics of a given type'
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('topic_type', help="Name of the ROS topic type to filter for (e.g. "
+                        "'std_msg/msg/String')")
+    parser.add_argument('-c', '--count-topics', action='store_true',
+                        help='Only display the number of topics discovered')
+
+
+def main(args: argparse.Namespace) -> int:
+    print_names([name for name, types in query_graph(args).topics(includes_hidden(args))
+                 if args.topic_type in types], args.count_topics)
+    return 0

@@ -1,0 +1,175 @@
+"""The CLI's own node (ros2cli's direct node): made, met with the graph, spun, torn down.
+
+A verb that talks to the graph itself (echo, pub, call, param get, ...) opens one with
+`cli_node()`; how long discovery may take is passed in (`spin_time`, `bound`), never global.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from typing import Any
+
+from ros2cli_lite.api import full_node_name
+
+NODE_NAME_PREFIX = '_ros2cli'
+
+
+@contextmanager
+def cli_node(name: str | None = None, discover: bool = True,
+             spin_time: float | None = None) -> Iterator[Any]:
+    """A hidden node `_ros2cli_<pid>` in a fresh context, torn down on exit.
+
+    With `discover`, make sure the node has met the rest of the graph first (see _meet_graph),
+    for at most `spin_time` seconds when given (a verb's --spin-time).
+    """
+    import rclpy
+
+    node_name = name or f'{NODE_NAME_PREFIX}_{os.getpid()}'
+    context, node = make_node(node_name)
+    try:
+        if discover:
+            bound = 1.8 if spin_time is None else min(1.8, spin_time)
+            context, node = _meet_graph(context, node, node_name, bound=bound)
+        yield node
+    finally:
+        # Shut the executor of spin_once down while its context lives: left to the garbage
+        # collector, it would destroy its guard condition after the context and print
+        # "Exception ignored in: Executor.__del__ ... InvalidHandle" on stderr.
+        executor = getattr(node, '_cli_executor', None)
+        if executor is not None:
+            executor.shutdown(timeout_sec=1.0)
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
+
+
+def make_node(name: str) -> tuple[Any, Any]:
+    """(a fresh context, a node in it offering no services): the CLI's and the daemon's."""
+    import rclpy
+    from rclpy.context import Context
+    from rclpy.parameter import Parameter
+
+    context = Context()
+    rclpy.init(args=[], context=context)
+    # No parameter or type-description services: the CLI node offers nothing to the graph.
+    node = rclpy.create_node(
+        name, context=context, start_parameter_services=False,
+        parameter_overrides=[Parameter('start_type_description_service', value=False)])
+    return context, node
+
+
+def _meet_graph(context: Any, node: Any, name: str, patience: float = 0.4,
+                bound: float = 1.8) -> tuple[Any, Any]:
+    """Wait until another participant is known; replace ours when it is not met quickly.
+
+    With Fast DDS and localhost-only discovery, a new participant is sometimes not answered
+    by the others until their next periodic announcement (up to 3 s later). Normally it meets
+    them within ~0.1 s, so after `patience` seconds without anybody a fresh participant is
+    tried (the old one is shut down once the new one exists, so both get distinct ports).
+    Gives up after `bound` seconds: the graph may well be empty.
+    """
+    import rclpy
+
+    start = time.monotonic()
+    attempt_start = start
+    while True:
+        if len(node.get_node_names_and_namespaces()) > 1:
+            return context, node
+        now = time.monotonic()
+        if now - start >= bound:
+            return context, node
+        if now - attempt_start >= patience and bound - (now - start) > patience:
+            node.destroy_node()
+            new_context, new_node = make_node(name)
+            rclpy.try_shutdown(context=context)
+            context, node = new_context, new_node
+            attempt_start = time.monotonic()
+        time.sleep(0.01)
+
+
+def spin_once(node: Any, timeout: float) -> None:
+    """Process pending callbacks of `node` for at most `timeout` seconds."""
+    executor = getattr(node, '_cli_executor', None)
+    if executor is None:
+        executor = _cli_executor_class()(context=node.context)
+        executor.add_node(node)
+        node._cli_executor = executor
+    executor.spin_once(timeout_sec=timeout)
+
+
+def _cli_executor_class() -> type:
+    from rclpy.executors import SingleThreadedExecutor
+
+    class CliExecutor(SingleThreadedExecutor):
+        """rclpy's executor, quiet when a Ctrl-C cut its __init__ short.
+
+        rclpy's __del__ then reads an attribute __init__ never set and prints "Exception
+        ignored ... no attribute '_sigint_gc'" (found by tests/test_clean_exits.py).
+        """
+
+        def __del__(self) -> None:
+            if hasattr(self, '_sigint_gc'):
+                super().__del__()
+
+    return CliExecutor
+
+
+def graph_snapshot(node: Any) -> tuple:
+    return (
+        tuple(sorted(node.get_node_names_and_namespaces())),
+        tuple((n, tuple(t)) for n, t in node.get_topic_names_and_types()),
+        tuple((n, tuple(t)) for n, t in node.get_service_names_and_types()),
+    )
+
+
+def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: float = 0.4,
+                   bound: float | None = None) -> bool:
+    """Let discovery run until the graph has stopped changing for `settle` seconds.
+
+    Without a daemon a fresh node knows nothing: poll the graph (cheap, local caches) and return
+    once it is stable and complete and, if given, `ready()` holds; never later than `bound`
+    seconds. Complete means another node is known and every node's endpoints have arrived (a
+    node's name and its endpoints are discovered separately, sometimes far apart under load).
+    The default bound (None) is 2 s for listings, 4 s while looking for something that may
+    just not be discovered yet (a loaded machine can take that long); a verb passes its
+    --spin-time. Returns whether `ready()` held.
+    """
+    if bound is None:
+        bound = 2.0 if ready is None else 4.0
+    start = time.monotonic()
+    own = node.get_fully_qualified_name()
+    last = None
+    changed = start
+    while True:
+        now = time.monotonic()
+        snapshot = graph_snapshot(node)
+        others = [(n, ns) for n, ns in snapshot[0] if full_node_name(n, ns) != own]
+        complete = bool(others) and all(_has_endpoints(node, n, ns) for n, ns in others)
+        snapshot = (*snapshot, complete)
+        if snapshot != last:
+            last, changed = snapshot, now
+        ok = ready() if ready is not None else True
+        if ok and complete and now - changed >= settle:
+            return True
+        if now - start >= bound:
+            return ok
+        time.sleep(0.02)
+
+
+def _has_endpoints(node: Any, name: str, namespace: str) -> bool:
+    """Whether a node's publishers or services are known; False once it has left the graph."""
+    from rclpy._rclpy_pybind11 import NodeNameNonExistentError
+    try:
+        return bool(node.get_publisher_names_and_types_by_node(name, namespace)
+                    or node.get_service_names_and_types_by_node(name, namespace))
+    except NodeNameNonExistentError:  # it left between listing the names and asking for this
+        return False
+def wait_until(predicate: Callable[[], bool], timeout: float, step: float = 0.02) -> bool:
+    deadline = time.monotonic() + timeout
+    while not predicate():
+        if time.monotonic() >= deadline:
+            return False
+        time.sleep(step)
+    return True
