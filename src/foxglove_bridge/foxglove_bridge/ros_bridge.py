@@ -83,6 +83,7 @@ class FoxgloveBridge(Node):
         self.settings: Settings = declare_settings(self)
         self.frontends: list[Frontend] = []
         self._bridge_lock = threading.RLock()
+        self._entity_lock = threading.Lock()
         self._next_id = 1
         self.channels: dict[int, ChannelInfo] = {}
         self._channel_ids: dict[tuple[str, str], int] = {}
@@ -183,38 +184,48 @@ class FoxgloveBridge(Node):
 
     # --- subscriptions: a DDS reader only while some client subscribes ----------------------
 
+    # rclpy entities are created and destroyed outside _bridge_lock: the executor thread takes
+    # that lock in its graph timer, and a destroy waits for the executor (a deadlock, measured
+    # with 5 clients). _entity_lock, never taken on the executor thread, orders the front-ends.
+
     def subscribe(self, channel_id: int, subscriber: Hashable) -> None:
-        with self._bridge_lock:
-            info = self.channels.get(channel_id)
-            if info is None:
-                raise BridgeError(f'Unknown channel ID: {channel_id}')
-            holders = self._reader_holders.setdefault(channel_id, set())
-            holders.add(subscriber)
-            if channel_id in self._readers:
-                return
-            msg_class = interface_class(info.type)
-            self._readers[channel_id] = self.create_subscription(
-                msg_class, info.topic, lambda data, cid=channel_id: self._on_message(cid, data),
+        with self._entity_lock:
+            with self._bridge_lock:
+                info = self.channels.get(channel_id)
+                if info is None:
+                    raise BridgeError(f'Unknown channel ID: {channel_id}')
+                self._reader_holders.setdefault(channel_id, set()).add(subscriber)
+                if channel_id in self._readers:
+                    return
+            reader = self.create_subscription(
+                interface_class(info.type), info.topic,
+                lambda data, cid=channel_id: self._on_message(cid, data),
                 self._subscription_qos(info.topic), raw=True)
+            with self._bridge_lock:
+                self._readers[channel_id] = reader
             self.get_logger().info(f"Subscribing to topic '{info.topic}' ({info.type})")
 
     def unsubscribe(self, channel_id: int, subscriber: Hashable) -> None:
-        with self._bridge_lock:
-            holders = self._reader_holders.get(channel_id)
-            if holders is None:
-                return
-            holders.discard(subscriber)
-            if not holders:
+        with self._entity_lock:
+            with self._bridge_lock:
+                holders = self._reader_holders.get(channel_id)
+                if holders is None:
+                    return
+                holders.discard(subscriber)
+                if holders:
+                    return
                 del self._reader_holders[channel_id]
-                self._drop_subscription(channel_id)
+                reader = self._readers.pop(channel_id, None)
+                info = self.channels.get(channel_id)
+            if reader is not None:
+                self.destroy_subscription(reader)
+                self.get_logger().info(f"Unsubscribing from topic '{info.topic if info else '?'}'")
 
     def _drop_subscription(self, channel_id: int) -> None:
-        subscription = self._readers.pop(channel_id, None)
-        if subscription is not None:
-            self.destroy_subscription(subscription)
-            info = self.channels.get(channel_id)
-            if info:
-                self.get_logger().info(f"Unsubscribing from topic '{info.topic}'")
+        """On the executor thread (graph timer): the topic is gone."""
+        reader = self._readers.pop(channel_id, None)
+        if reader is not None:
+            self.destroy_subscription(reader)
 
     def subscription_count(self) -> int:
         with self._bridge_lock:
@@ -255,7 +266,7 @@ class FoxgloveBridge(Node):
             msg_class = interface_class(type_name)
         except DefinitionNotFound:
             raise BridgeError(f"Unknown message type '{schema_name}' for topic '{topic}'") from None
-        with self._bridge_lock:
+        with self._entity_lock:
             if key in self._client_pubs:
                 raise BridgeError(f"Client channel for topic '{topic}' is already advertised")
             publisher = self.create_publisher(msg_class, topic, 10)
@@ -263,7 +274,7 @@ class FoxgloveBridge(Node):
         self.get_logger().info(f"Client advertised topic '{topic}' ({type_name})")
 
     def client_unadvertise(self, key: Hashable) -> None:
-        with self._bridge_lock:
+        with self._entity_lock:
             entry = self._client_pubs.pop(key, None)
             if entry is not None:
                 self.destroy_publisher(entry.publisher)
@@ -295,7 +306,7 @@ class FoxgloveBridge(Node):
             request = deserialize_message(payload, srv_class.Request)
         except Exception:
             raise BridgeError(f"Request is not valid CDR of {info.type}_Request") from None
-        with self._bridge_lock:
+        with self._entity_lock:
             client = self._service_clients.get(service_id)
             if client is None:
                 client = self.create_client(srv_class, info.name)
