@@ -238,9 +238,9 @@ class V1Server:
         finally:
             sender.cancel()
             del self.clients[client.number]
-            await self._release(client)
+            await self._blocking(self._release, client)
 
-    async def _release(self, client: Client) -> None:
+    def _release(self, client: Client) -> None:
         for channel_id in list(client.by_channel):
             self.ros.unsubscribe(channel_id, client.key())
         for channel_id in client.advertised:

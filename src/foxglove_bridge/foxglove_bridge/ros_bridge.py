@@ -8,6 +8,8 @@ to DDS as it came.
 
 from __future__ import annotations
 
+import concurrent.futures
+import queue
 import threading
 import time
 from collections.abc import Hashable
@@ -27,6 +29,7 @@ from foxglove_bridge.ros_parameters import ParameterAccess
 
 GRAPH_PERIOD = 1.0  # seconds between graph polls (new topics and services show up this late)
 SERVICE_TIMEOUT = 5.0  # seconds a client's service call may take
+JOB_TIMEOUT = 5.0  # seconds a front-end waits for the ROS thread to create or destroy
 
 
 class BridgeError(Exception):
@@ -84,6 +87,9 @@ class FoxgloveBridge(Node):
         self.frontends: list[Frontend] = []
         self._bridge_lock = threading.RLock()
         self._entity_lock = threading.Lock()
+        self._jobs: queue.SimpleQueue[Any] = queue.SimpleQueue()
+        self._ros_thread: int | None = None
+        self._wake = self.create_guard_condition(self._on_jobs)
         self._next_id = 1
         self.channels: dict[int, ChannelInfo] = {}
         self._channel_ids: dict[tuple[str, str], int] = {}
@@ -111,6 +117,7 @@ class FoxgloveBridge(Node):
             self._publish_graph(force=False)
 
     def _on_graph_timer(self) -> None:
+        self._ros_thread = threading.get_ident()
         self.poll_graph()
 
     def _visible(self, name: str, whitelist: list[Any]) -> bool:
@@ -184,9 +191,34 @@ class FoxgloveBridge(Node):
 
     # --- subscriptions: a DDS reader only while some client subscribes ----------------------
 
-    # rclpy entities are created and destroyed outside _bridge_lock: the executor thread takes
-    # that lock in its graph timer, and a destroy waits for the executor (a deadlock, measured
-    # with 5 clients). _entity_lock, never taken on the executor thread, orders the front-ends.
+    # rclpy entities are created and destroyed on the executor's thread only: a subscription
+    # destroyed from another thread while the executor built its wait set raised InvalidHandle
+    # there and stopped the executor (seen with 200 topics). Front-ends queue the work
+    # (on_ros_thread); _entity_lock, never taken on the executor thread, orders them.
+
+    def on_ros_thread(self, function: Any, *args: Any) -> Any:
+        if threading.get_ident() == self._ros_thread:
+            return function(*args)
+        job: concurrent.futures.Future[Any] = concurrent.futures.Future()
+        self._jobs.put((job, function, args))
+        self._wake.trigger()
+        try:
+            return job.result(timeout=JOB_TIMEOUT)
+        except concurrent.futures.TimeoutError:
+            raise BridgeError(f'ROS side did not answer within {JOB_TIMEOUT} s') from None
+
+    def _on_jobs(self) -> None:
+        self._ros_thread = threading.get_ident()
+        while True:
+            try:
+                job, function, args = self._jobs.get_nowait()
+            except queue.Empty:
+                return
+            if job.set_running_or_notify_cancel():
+                try:
+                    job.set_result(function(*args))
+                except Exception as error:  # handed to the waiting front-end
+                    job.set_exception(error)
 
     def subscribe(self, channel_id: int, subscriber: Hashable) -> None:
         with self._entity_lock:
@@ -197,10 +229,10 @@ class FoxgloveBridge(Node):
                 self._reader_holders.setdefault(channel_id, set()).add(subscriber)
                 if channel_id in self._readers:
                     return
-            reader = self.create_subscription(
+            reader = self.on_ros_thread(lambda: self.create_subscription(
                 interface_class(info.type), info.topic,
                 lambda data, cid=channel_id: self._on_message(cid, data),
-                self._subscription_qos(info.topic), raw=True)
+                self._subscription_qos(info.topic), raw=True))
             with self._bridge_lock:
                 self._readers[channel_id] = reader
             self.get_logger().info(f"Subscribing to topic '{info.topic}' ({info.type})")
@@ -218,7 +250,7 @@ class FoxgloveBridge(Node):
                 reader = self._readers.pop(channel_id, None)
                 info = self.channels.get(channel_id)
             if reader is not None:
-                self.destroy_subscription(reader)
+                self.on_ros_thread(self.destroy_subscription, reader)
                 self.get_logger().info(f"Unsubscribing from topic '{info.topic if info else '?'}'")
 
     def _drop_subscription(self, channel_id: int) -> None:
@@ -269,7 +301,7 @@ class FoxgloveBridge(Node):
         with self._entity_lock:
             if key in self._client_pubs:
                 raise BridgeError(f"Client channel for topic '{topic}' is already advertised")
-            publisher = self.create_publisher(msg_class, topic, 10)
+            publisher = self.on_ros_thread(self.create_publisher, msg_class, topic, 10)
             self._client_pubs[key] = ClientPublisher(topic, msg_class, publisher)
         self.get_logger().info(f"Client advertised topic '{topic}' ({type_name})")
 
@@ -277,7 +309,7 @@ class FoxgloveBridge(Node):
         with self._entity_lock:
             entry = self._client_pubs.pop(key, None)
             if entry is not None:
-                self.destroy_publisher(entry.publisher)
+                self.on_ros_thread(self.destroy_publisher, entry.publisher)
 
     def client_publish(self, key: Hashable, data: bytes) -> None:
         entry = self._client_pubs.get(key)
@@ -309,7 +341,7 @@ class FoxgloveBridge(Node):
         with self._entity_lock:
             client = self._service_clients.get(service_id)
             if client is None:
-                client = self.create_client(srv_class, info.name)
+                client = self.on_ros_thread(self.create_client, srv_class, info.name)
                 self._service_clients[service_id] = client
         if not client.wait_for_service(timeout_sec=SERVICE_TIMEOUT):
             raise BridgeError(f"Service '{info.name}' is not available")

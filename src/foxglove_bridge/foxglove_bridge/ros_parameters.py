@@ -113,7 +113,7 @@ class ParameterAccess:
         with self._lock:
             client = self._clients.get(node_name)
             if client is None:
-                client = AsyncParameterClient(self._node, node_name)
+                client = self._node.on_ros_thread(AsyncParameterClient, self._node, node_name)
                 self._clients[node_name] = client
             return client
 

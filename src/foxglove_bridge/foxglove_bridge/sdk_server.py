@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import base64
 import threading
+from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 import foxglove
@@ -54,7 +55,9 @@ class SdkServer:
         self._channels: dict[int, Any] = {}   # our channel id -> SDK BaseChannel
         self._ours: dict[int, int] = {}       # SDK channel id -> our channel id
         self._service_names: dict[int, str] = {}
-        self._client_channels: dict[tuple[int, int], ClientChannel] = {}
+        # Subscribes run here, in order, not on the SDK's thread: the SDK may hold its channel
+        # state while calling us, and the ROS thread needs it for channel.log meanwhile.
+        self._worker = ThreadPoolExecutor(max_workers=1, thread_name_prefix='sdk_subscribe')
         capabilities = [CAPABILITIES[c] for c in ros.settings.capabilities if c in CAPABILITIES]
         if ros.settings.use_sim_time:
             capabilities.append(Capability.Time)
@@ -67,6 +70,7 @@ class SdkServer:
 
     def stop(self) -> None:
         self.server.stop()
+        self._worker.shutdown(wait=False, cancel_futures=True)
 
     def _status(self, message: str) -> None:
         self.ros.get_logger().warn(message)
@@ -134,12 +138,18 @@ class SdkServer:
     def on_subscribe(self, client: Client, channel: ChannelView) -> None:
         ours = self._ours.get(channel.id)
         if ours is not None:
-            self.ros.subscribe(ours, ('sdk', client.id))
+            self._worker.submit(self._quietly, self.ros.subscribe, ours, ('sdk', client.id))
 
     def on_unsubscribe(self, client: Client, channel: ChannelView) -> None:
         ours = self._ours.get(channel.id)
         if ours is not None:
-            self.ros.unsubscribe(ours, ('sdk', client.id))
+            self._worker.submit(self._quietly, self.ros.unsubscribe, ours, ('sdk', client.id))
+
+    def _quietly(self, function: Any, *args: Any) -> None:
+        try:
+            function(*args)
+        except BridgeError as error:
+            self._status(str(error))
 
     def on_client_advertise(self, client: Client, channel: ClientChannel) -> None:
         try:
