@@ -29,6 +29,7 @@ from support import Background, TestNode, collect_stamped
 
 CLIENT_DIR = Path(__file__).parent / 'foxglove_client'
 PROTOCOLS = ['foxglove.websocket.v1', 'foxglove.sdk.v1']
+ASSETS = r'^package://turtlesim/(?:[-\w]+/)*[-\w.]+\.(?:xml|png)$'
 POSE_SCHEMA = ('float32 x\nfloat32 y\nfloat32 theta\n\nfloat32 linear_velocity\n'
                'float32 angular_velocity')
 
@@ -95,7 +96,7 @@ class Driver:
 @pytest.fixture(scope='module')
 def bridge(module_turtlesim, module_launch):
     process = module_launch('foxglove_bridge', 'foxglove_bridge', '--ros-args',
-                            '-p', 'port:=0')
+                            '-p', 'port:=0', '-p', f"asset_uri_allowlist:=['{ASSETS}']")
     port = int(process.wait_for_output(r'Server listening on port (\d+)', 20).group(1))
     yield process, f'ws://127.0.0.1:{port}'
     assert process.stop() == 0, process.output
@@ -291,3 +292,30 @@ def test_launch_file_starts_the_bridge_with_upstreams_arguments(launch):
     process.wait_for_output(r'\[foxglove_bridge[-\d]*\]: Server listening on port \d+', 20)
     assert process.stop() == 0, process.output
     assert 'Traceback' not in process.output, process.output
+
+
+def test_connection_graph_names_turtlesim_as_the_pose_publisher(client):
+    client.send('subscribeConnectionGraph')
+    update = client.wait(lambda e: e.get('event') == 'connectionGraphUpdate' and any(
+        t['name'] == '/turtle1/pose' for t in e['publishedTopics']), 'a graph with the pose')
+    pose = next(t for t in update['publishedTopics'] if t['name'] == '/turtle1/pose')
+    assert '/turtlesim' in pose['publisherIds']
+    spawn = [s for s in update['advertisedServices'] if s['name'] == '/spawn']
+    assert spawn and '/turtlesim' in spawn[0]['providerIds']
+
+
+def test_assets_only_through_the_allowlist(client):
+    from ament_index_python import get_package_share_directory
+    package_xml = Path(get_package_share_directory('turtlesim')) / 'package.xml'
+    cases = {1: ('package://turtlesim/package.xml', 0),          # allowed, present
+             2: ('package://turtlesim/missing.png', 1),          # allowed, absent
+             3: ('package://turtlesim/../turtlesim/package.xml', 1),  # not allowed
+             4: ('file:///etc/passwd', 1)}                        # not allowed
+    for request_id, (uri, _status) in cases.items():
+        client.send('fetchAsset', uri=uri, requestId=request_id)
+    for request_id, (uri, status) in cases.items():
+        answer = client.wait(lambda e, rid=request_id: e.get('event') == 'fetchAssetResponse'
+                             and e['requestId'] == rid, f'the answer for {uri}')
+        assert answer['status'] == status, answer
+        if status == 0:
+            assert answer['size'] == package_xml.stat().st_size

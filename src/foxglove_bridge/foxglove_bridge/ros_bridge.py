@@ -9,6 +9,7 @@ to DDS as it came.
 from __future__ import annotations
 
 import concurrent.futures
+import os
 import queue
 import threading
 import time
@@ -401,10 +402,11 @@ class FoxgloveBridge(Node):
             raise BridgeError(f"Unsupported asset URI (package:// only): {uri}")
         package, _, relative = uri[len('package://'):].partition('/')
         try:
-            root = Path(get_package_share_directory(package)).resolve()
+            root = Path(os.path.normpath(get_package_share_directory(package)))
         except (PackageNotFoundError, ValueError):
             raise BridgeError(f"Package '{package}' not found for asset {uri}") from None
-        path = (root / relative).resolve()
+        # Normalised, not resolved: a --symlink-install share links its files to src/.
+        path = Path(os.path.normpath(root / relative))
         if root not in path.parents or not path.is_file():
             raise BridgeError(f'Asset not found: {uri}')
         return path.read_bytes()
