@@ -319,3 +319,23 @@ def test_assets_only_through_the_allowlist(client):
         assert answer['status'] == status, answer
         if status == 0:
             assert answer['size'] == package_xml.stat().st_size
+
+
+@pytest.mark.parametrize('subprotocol', PROTOCOLS)
+def test_sim_time_reaches_the_client_from_clock(subprotocol, launch):
+    sim = launch('turtlesim', 'turtlesim_node', '--headless', '--fixed-step')
+    sim.wait_for_output(r'Spawning turtle \[turtle1\]')
+    bridge = launch('foxglove_bridge', 'foxglove_bridge', '--ros-args', '-p', 'port:=0',
+                    '-p', 'use_sim_time:=true')
+    port = bridge.wait_for_output(r'Server listening on port (\d+)', 20).group(1)
+    driver = Driver(f'ws://127.0.0.1:{port}', subprotocol)
+    try:
+        info = driver.wait(lambda e: e.get('event') == 'serverInfo', 'serverInfo')['info']
+        assert 'time' in info['capabilities']
+        driver.wait(lambda _e: len(driver.of('time')) >= 5, 'five /clock times')
+        stamps = [e['timestamp'] for e in driver.of('time')]
+        assert stamps == sorted(stamps)
+        # Simulated time: it starts near zero, not at the wall clock.
+        assert stamps[-1] < 3600 * 10**9
+    finally:
+        driver.close()

@@ -49,6 +49,7 @@ client.on("message", ({ subscriptionId, timestamp, data }) => {
   out({ event: "message", topic: entry.topic, receivedNs: Date.now() * 1e6,
     timestamp: Number(timestamp), message: plain(message) });
 });
+client.on("time", (t) => out({ event: "time", timestamp: Number(t.timestamp) }));
 client.on("parameterValues", (p) => out({ event: "parameterValues", id: p.id,
   parameters: p.parameters }));
 client.on("serviceCallResponse", (r) => {
