@@ -36,6 +36,7 @@ PAGES = {
     'console': ('/console', 'Console'),
     'actions': ('/actions', 'Actions'),
     'turtlesim': ('/turtlesim', 'Turtlesim'),
+    'foxglove': ('/foxglove', 'Foxglove'),
 }
 
 

@@ -10,6 +10,7 @@
     ['/console', 'Console', '/rosout with filters (rqt_console)'],
     ['/actions', 'Actions', 'send goals, see feedback and results'],
     ['/turtlesim', 'Turtlesim', 'the live canvas, keyboard teleop'],
+    ['/foxglove', 'Foxglove', 'connect Foxglove or Lichtblick (foxglove_bridge)'],
   ];
   const list = rqt.el('ul');
   for (const [href, name, what] of tools) {
