@@ -6,8 +6,8 @@ import asyncio
 import threading
 import time
 
+from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.executors import SingleThreadedExecutor
-from turtlesim_py.spinning import ros_session, spin_until_stopped
 
 from foxglove_bridge.front import Front
 from foxglove_bridge.protocol_v1 import V1Server
