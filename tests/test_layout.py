@@ -201,20 +201,16 @@ def test_no_package_imports_another_packages_internals():
     assert found == [], '\n'.join(found)
 
 
-def test_the_checker_sees_imports_inside_functions_and_scripts():
+def test_the_checker_sees_imports_inside_functions_and_scripts(tmp_path):
     # The checker itself: a lazy import in a function and a script without .py both count.
     packages = scan()
     assert 'turtlesim' in packages and 'rqt_web' in packages
     script = SRC / 'turtlesim' / 'scripts' / 'turtlesim_node'
     assert script in python_files(packages['turtlesim'], packages)
-    tree = 'def f():\n    import os.path\n    importlib.import_module("json.decoder")\n'
-    probe = REPO / 'build' / 'test_layout_probe.py'
-    probe.parent.mkdir(exist_ok=True)
-    probe.write_text(tree)
-    try:
-        assert [name for name, _ in imported_names(probe)] == ['os', 'json']
-    finally:
-        probe.unlink()
+    probe = tmp_path / 'probe.py'
+    probe.write_text('def f():\n    import os.path\n'
+                     '    importlib.import_module("json.decoder")\n')
+    assert [name for name, _ in imported_names(probe)] == ['os', 'json']
 
 
 def mermaid(packages: dict[str, Package]) -> str:
