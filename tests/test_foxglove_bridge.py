@@ -25,7 +25,7 @@ from rcl_interfaces.srv import GetParameters
 from std_srvs.srv import Trigger
 from turtlesim.msg import Pose
 
-from support import Background, TestNode, collect_stamped
+from support import Background, TestNode, collect_stamped, wait_until
 
 CLIENT_DIR = Path(__file__).parent / 'foxglove_client'
 PROTOCOLS = ['foxglove.websocket.v1', 'foxglove.sdk.v1']
@@ -155,7 +155,7 @@ def drive(client: Driver, twist: dict[str, Any], seconds: float) -> None:
 def test_published_cmd_vel_moves_the_turtle(client, module_probe):
     poses = collect_stamped(module_probe, Pose, '/turtle1/pose')
     with Background(module_probe):
-        time.sleep(0.5)
+        wait_until(lambda: poses, 10, 'the probe hearing /turtle1/pose')
         start = poses[-1][1]
         drive(client, {'linear': {'x': 1.5, 'y': 0, 'z': 0},
                        'angular': {'x': 0, 'y': 0, 'z': 0.5}}, 1.5)
@@ -337,5 +337,8 @@ def test_sim_time_reaches_the_client_from_clock(subprotocol, launch):
         assert stamps == sorted(stamps)
         # Simulated time: it starts near zero, not at the wall clock.
         assert stamps[-1] < 3600 * 10**9
+        # Ctrl-C with a client still connected: exit 0, no traceback.
+        assert bridge.stop() == 0, bridge.output
+        assert 'Traceback' not in bridge.output and 'Error' not in bridge.output, bridge.output
     finally:
         driver.close()
