@@ -21,7 +21,8 @@ from typing import Any
 import pytest
 from geometry_msgs.msg import Twist
 from PySide6.QtGui import QImage
-from rcl_interfaces.srv import GetParameters
+from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
+from rcl_interfaces.srv import GetParameters, SetParameters
 from std_srvs.srv import Trigger
 from turtlesim.msg import Pose
 
@@ -198,8 +199,10 @@ def test_background_r_is_set_and_read_back(client, module_probe):
     name = '/turtlesim.background_r'
     client.send('subscribeParameterUpdates', names=[name])
     client.send('setParameters', parameters=[{'name': name, 'value': value}], id='set')
-    client.wait(lambda e: e.get('event') == 'parameterValues' and any(
-        p['name'] == name and p['value'] == value for p in e['parameters']), 'the new value')
+    # An update from the subscription (no request id), not only the reply to our set.
+    client.wait(lambda e: e.get('event') == 'parameterValues' and e.get('id') is None and any(
+        p['name'] == name and p['value'] == value for p in e['parameters']),
+        'the parameter update')
     since = len(client.events)
     client.send('getParameters', names=[name], id='get')
     got = client.wait(lambda e: e.get('event') == 'parameterValues' and e.get('id') == 'get',
@@ -208,6 +211,15 @@ def test_background_r_is_set_and_read_back(client, module_probe):
     reply = module_probe.call(GetParameters, '/turtlesim/get_parameters',
                               GetParameters.Request(names=['background_r']))
     assert reply.values[0].integer_value == value
+    # Changed by someone else (an rclpy client): the subscribed client hears of it.
+    since = len(client.events)
+    changed = Parameter(name='background_r', value=ParameterValue(
+        type=ParameterType.PARAMETER_INTEGER, integer_value=value + 1))
+    result = module_probe.call(SetParameters, '/turtlesim/set_parameters',
+                               SetParameters.Request(parameters=[changed]))
+    assert result.results[0].successful
+    client.wait(lambda e: e.get('event') == 'parameterValues' and e['parameters'] == [
+        {'name': name, 'value': value + 1}], 'the update after an rclpy set', since=since)
 
 
 def errors_since(client: Driver, since: int) -> list[str]:
