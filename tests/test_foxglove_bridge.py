@@ -21,11 +21,12 @@ from typing import Any
 import pytest
 from geometry_msgs.msg import Twist
 from PySide6.QtGui import QImage
-from rcl_interfaces.srv import GetParameters
+from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
+from rcl_interfaces.srv import GetParameters, SetParameters
 from std_srvs.srv import Trigger
 from turtlesim.msg import Pose
 
-from support import Background, TestNode, collect_stamped
+from support import Background, TestNode, collect_stamped, wait_until
 
 CLIENT_DIR = Path(__file__).parent / 'foxglove_client'
 PROTOCOLS = ['foxglove.websocket.v1', 'foxglove.sdk.v1']
@@ -155,7 +156,7 @@ def drive(client: Driver, twist: dict[str, Any], seconds: float) -> None:
 def test_published_cmd_vel_moves_the_turtle(client, module_probe):
     poses = collect_stamped(module_probe, Pose, '/turtle1/pose')
     with Background(module_probe):
-        time.sleep(0.5)
+        wait_until(lambda: poses, 10, 'the probe hearing /turtle1/pose')
         start = poses[-1][1]
         drive(client, {'linear': {'x': 1.5, 'y': 0, 'z': 0},
                        'angular': {'x': 0, 'y': 0, 'z': 0.5}}, 1.5)
@@ -198,8 +199,10 @@ def test_background_r_is_set_and_read_back(client, module_probe):
     name = '/turtlesim.background_r'
     client.send('subscribeParameterUpdates', names=[name])
     client.send('setParameters', parameters=[{'name': name, 'value': value}], id='set')
-    client.wait(lambda e: e.get('event') == 'parameterValues' and any(
-        p['name'] == name and p['value'] == value for p in e['parameters']), 'the new value')
+    # An update from the subscription (no request id), not only the reply to our set.
+    client.wait(lambda e: e.get('event') == 'parameterValues' and e.get('id') is None and any(
+        p['name'] == name and p['value'] == value for p in e['parameters']),
+        'the parameter update')
     since = len(client.events)
     client.send('getParameters', names=[name], id='get')
     got = client.wait(lambda e: e.get('event') == 'parameterValues' and e.get('id') == 'get',
@@ -208,6 +211,15 @@ def test_background_r_is_set_and_read_back(client, module_probe):
     reply = module_probe.call(GetParameters, '/turtlesim/get_parameters',
                               GetParameters.Request(names=['background_r']))
     assert reply.values[0].integer_value == value
+    # Changed by someone else (an rclpy client): the subscribed client hears of it.
+    since = len(client.events)
+    changed = Parameter(name='background_r', value=ParameterValue(
+        type=ParameterType.PARAMETER_INTEGER, integer_value=value + 1))
+    result = module_probe.call(SetParameters, '/turtlesim/set_parameters',
+                               SetParameters.Request(parameters=[changed]))
+    assert result.results[0].successful
+    client.wait(lambda e: e.get('event') == 'parameterValues' and e['parameters'] == [
+        {'name': name, 'value': value + 1}], 'the update after an rclpy set', since=since)
 
 
 def errors_since(client: Driver, since: int) -> list[str]:
@@ -337,5 +349,8 @@ def test_sim_time_reaches_the_client_from_clock(subprotocol, launch):
         assert stamps == sorted(stamps)
         # Simulated time: it starts near zero, not at the wall clock.
         assert stamps[-1] < 3600 * 10**9
+        # Ctrl-C with a client still connected: exit 0, no traceback.
+        assert bridge.stop() == 0, bridge.output
+        assert 'Traceback' not in bridge.output and 'Error' not in bridge.output, bridge.output
     finally:
         driver.close()

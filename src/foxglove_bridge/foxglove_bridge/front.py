@@ -64,7 +64,13 @@ class Front:
             writer.close()
             return
         up_writer.write(head)
-        await asyncio.gather(_pipe(reader, up_writer), _pipe(up_reader, writer))
+        try:
+            await asyncio.gather(_pipe(reader, up_writer), _pipe(up_reader, writer))
+        except asyncio.CancelledError:
+            # The bridge is stopping with this client connected: end quietly (asyncio would
+            # print the cancelled connection task as a traceback).
+            writer.close()
+            up_writer.close()
 
     async def start(self, host: str, port: int) -> asyncio.Server:
         return await asyncio.start_server(self.handle, host, port, limit=HEAD_LIMIT,
