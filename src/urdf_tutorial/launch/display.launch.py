@@ -7,6 +7,7 @@ absolute); .xacro files go through `xacro` like any URDF (Command(['xacro ', pat
 
 from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument
+from launch.conditions import IfCondition, UnlessCondition
 from launch.substitutions import Command, LaunchConfiguration, PathJoinSubstitution
 from launch_ros.actions import Node
 from launch_ros.parameter_descriptions import ParameterValue
@@ -29,9 +30,11 @@ def generate_launch_description():
                                           'package'),
         Node(package='robot_state_publisher', executable='robot_state_publisher',
              parameters=[{'robot_description': description}]),
-        # No slider GUI yet (joint_state_publisher_gui): gui:=true also runs the plain
-        # publisher, which holds every joint at zero (or the centre of its limits).
-        Node(package='joint_state_publisher', executable='joint_state_publisher'),
+        # The GUI's sliders are the Joint State Publisher page of the browser app.
+        Node(package='joint_state_publisher_gui', executable='joint_state_publisher_gui',
+             condition=IfCondition(LaunchConfiguration('gui'))),
+        Node(package='joint_state_publisher', executable='joint_state_publisher',
+             condition=UnlessCondition(LaunchConfiguration('gui'))),
         Node(package='rviz2', executable='rviz2', name='rviz2', output='screen',
              arguments=['-d', LaunchConfiguration('rvizconfig')]),
     ])
