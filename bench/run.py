@@ -12,6 +12,7 @@ import json
 import time
 
 import bag
+import bag_stop
 import cpu
 import daemon
 import latency
@@ -33,6 +34,8 @@ SUITE = {
     'launch': lambda s, quick: launch_time.run(s, repeats=2 if quick else launch_time.REPEATS),
     'rqt': lambda s, quick: rqt.run(s, duration=20.0 if quick else rqt.DURATION_S),
     'bag': lambda s, quick: bag.run(s, turtles=50 if quick else bag.TURTLES),
+    'bag_stop': lambda s, quick: bag_stop.run(s, runs=3 if quick else bag_stop.RUNS,
+                                             turtles=50 if quick else bag_stop.TURTLES),
 }
 
 

@@ -211,6 +211,29 @@ def test_stopped_recorder_keeps_every_acknowledged_message(launch, probe, ros_en
             f'message {i}' for i in range(500)]
 
 
+def test_ctrl_c_while_messages_keep_coming_leaves_a_closed_bag(launch, ros_env, turtlesim,
+                                                               tmp_path):
+    # turtle1's pose never stops (62.5 Hz): the recorder must still finish on Ctrl-C, and
+    # `ros2 bag info` typed right after read the bag (issue 24: it said "No metadata.yaml"
+    # while the recorder drained for 5 s; bench/bag_stop.py measures how fast this is).
+    from mcap.reader import make_reader
+
+    bag = tmp_path / 'poses'
+    recorder = record(launch, '-o', str(bag), '/turtle1/pose')
+    recorder.wait_for_output(RECORD_LOG + 'All requested topics are subscribed')
+    recorder.wait_for_output(RECORD_LOG + 'Recording...')
+    time.sleep(1.0)  # some poses to record
+    assert stop(recorder) == 0
+    assert (bag / 'metadata.yaml').exists()
+    text = info(ros_env, bag)
+    assert recorder.output.endswith('Recording stopped\n'), recorder.output
+    with open(bag / 'poses_0.mcap', 'rb') as stream:
+        stored = sum(1 for _ in make_reader(stream).iter_messages())
+    assert stored > 0
+    assert (f'Topic information: Topic: /turtle1/pose | Type: turtlesim/msg/Pose | Count: '
+            f'{stored} | Serialization Format: cdr\n') in text, text
+
+
 def test_killed_recorder_bag_is_reported_then_reindexed(launch, probe, ros_env, tmp_path):
     publisher = probe.node.create_publisher(String, '/chatter', reliable())
     bag = tmp_path / 'killed'

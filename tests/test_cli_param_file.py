@@ -36,7 +36,6 @@ def dumped(background_r: int) -> str:
         '          durability: volatile\n'
         '          history: keep_last\n'
         '          reliability: reliable\n'
-        '    service_configure_introspection: disabled\n'
         '    start_type_description_service: true\n'
         '    use_sim_time: false\n'
         '\n')
@@ -96,8 +95,7 @@ def test_param_list_matches_rclcpp_nodes(module_ros_env, turtlesim, teleop):
     check(ros2(module_ros_env, 'param', 'list', '/turtlesim'), lines(
         *(f'  {name}' for name in [
             'background_b', 'background_g', 'background_r', 'holonomic', *QOS,
-            'service_configure_introspection', 'start_type_description_service',
-            'use_sim_time'])))
+            'start_type_description_service', 'use_sim_time'])))
 
 
 def test_node_info_teleop_is_the_tutorials(module_ros_env, turtlesim, teleop):
@@ -141,8 +139,7 @@ def test_dump_load_and_params_file_round_trip(module_ros_env, turtlesim, tmp_pat
     # As Jazzy: successes on stdout, refusals (read-only parameters) on stderr.
     check(loaded, lines(
         *(f'Set parameter {name} successful' for name in
-          ('background_b', 'background_g', 'background_r', 'holonomic',
-           'service_configure_introspection', 'use_sim_time'))),
+          ('background_b', 'background_g', 'background_r', 'holonomic', 'use_sim_time'))),
         lines(*(f"Set parameter {name} failed: parameter '{name}' cannot be set because it is "
                 'read-only' for name in (*QOS, 'start_type_description_service'))))
     check(ros2(env, 'param', 'get', '/turtlesim', 'background_r'), 'Integer value is: 150\n')

@@ -354,3 +354,15 @@ def test_sim_time_reaches_the_client_from_clock(subprotocol, launch):
         assert 'Traceback' not in bridge.output and 'Error' not in bridge.output, bridge.output
     finally:
         driver.close()
+
+
+def test_spawn_service_answers_and_the_new_turtle_gets_a_channel(client):
+    name = 'fox_' + client.subprotocol.split('.')[1]  # fox_websocket / fox_sdk
+    call = client.send('call', service='/spawn',
+                       request={'x': 2.0, 'y': 2.0, 'theta': 0.0, 'name': name})
+    answer = client.wait(lambda e: e.get('callId') == call['callId'] and e['event'] in (
+        'serviceCallResponse', 'serviceCallFailure'), 'the spawn answer')
+    assert answer == {'event': 'serviceCallResponse', 'callId': call['callId'],
+                      'response': {'name': name}}
+    client.wait(lambda e: e.get('event') == 'advertise' and any(
+        c['topic'] == f'/{name}/pose' for c in e['channels']), f'the /{name}/pose channel')

@@ -6,7 +6,7 @@ package_name = 'rqt_web'
 # The upstream rqt package names the tutorials type (`ros2 run rqt_graph rqt_graph`): this
 # package registers each in the ament index and installs its lib/<name>/<name> launcher.
 TOOLS = ['rqt_gui', 'rqt_graph', 'rqt_console', 'rqt_service_caller', 'rqt_reconfigure',
-         'rqt_topic', 'rqt_action']
+         'rqt_topic', 'rqt_action', 'rviz2']
 
 setup(
     name=package_name,
@@ -32,6 +32,7 @@ setup(
             'rqt = rqt_web.launcher:main',
             'rqt_graph = rqt_web.launcher:graph_main',
             'rqt_console = rqt_web.launcher:console_main',
+            'rviz2 = rqt_web.rviz_launcher:main',
         ],
         # A headless turtlesim prints where to watch it (turtlesim_py/canvas_stream.py).
         'turtlesim.live_view': [

@@ -47,18 +47,23 @@ class AddTwoIntsClient(Node):
     def __init__(self) -> None:
         super().__init__('add_two_ints_client')
         self.client = self.create_client(AddTwoInts, 'add_two_ints')
+        # Spun while waiting too, so that its parameter services answer (`ros2 param list
+        # /add_two_ints_client` would otherwise wait for a node that never replies).
+        self.spinner = SingleThreadedExecutor()
+        self.spinner.add_node(self)
 
     def wait_for_server(self, stop: threading.Event) -> bool:
         """Wait until the server is there (True) or a signal asks us to stop (False).
 
-        Short waits, so that Ctrl-C or SIGTERM is noticed within SIGNAL_CHECK_PERIOD while the
+        Short spins, so that Ctrl-C or SIGTERM is noticed within SIGNAL_CHECK_PERIOD while the
         context is still valid (rclpy's own handler shut the context down under a waiting
         wait_for_service: `RCLError: ... context is invalid` and exit code 1).
         """
         next_warning = time.monotonic() + WAIT_WARN_PERIOD
         while not stop.is_set():
-            if self.client.wait_for_service(timeout_sec=SIGNAL_CHECK_PERIOD):
+            if self.client.service_is_ready():
                 return True
+            self.spinner.spin_once(timeout_sec=SIGNAL_CHECK_PERIOD)
             if time.monotonic() >= next_warning:
                 next_warning += WAIT_WARN_PERIOD
                 self.get_logger().warning('service /add_two_ints not available, waiting again...')
@@ -67,15 +72,13 @@ class AddTwoIntsClient(Node):
     def add(self, a: int, b: int, stop: threading.Event) -> int | None:
         """The sum from the server, or None when stopped by a signal before the answer."""
         future = self.client.call_async(AddTwoInts.Request(a=a, b=b))
-        executor = SingleThreadedExecutor()
-        executor.add_node(self)
-        try:
-            while not future.done() and not stop.is_set():
-                executor.spin_once(timeout_sec=SIGNAL_CHECK_PERIOD)
-        finally:
-            executor.remove_node(self)
-            executor.shutdown(timeout_sec=1.0)
+        while not future.done() and not stop.is_set():
+            self.spinner.spin_once(timeout_sec=SIGNAL_CHECK_PERIOD)
         return future.result().sum if future.done() else None
+
+    def close(self) -> None:
+        self.spinner.shutdown(timeout_sec=1.0)
+        self.destroy_node()
 
 
 def main(args: list[str] | None = None) -> int:
@@ -87,11 +90,14 @@ def main(args: list[str] | None = None) -> int:
         return 2
     with ros_session(args) as stop:
         node = AddTwoIntsClient()
-        total = node.add(a, b, stop) if node.wait_for_server(stop) else None
-        if total is None:
-            return 130  # interrupted before the answer (as a shell reports Ctrl-C)
-        node.get_logger().info(f'Result of add_two_ints: {a} + {b} = {total}')
-    return 0
+        try:
+            total = node.add(a, b, stop) if node.wait_for_server(stop) else None
+            if total is not None:
+                node.get_logger().info(f'Result of add_two_ints: {a} + {b} = {total}')
+        finally:
+            node.close()
+    # Interrupted before the answer: 130, as a shell reports Ctrl-C.
+    return 130 if total is None else 0
 
 
 if __name__ == '__main__':

@@ -11,8 +11,10 @@ from rclpy.service_introspection import ServiceIntrospectionState
 
 from my_robot_controller.int64 import INT64_RANGE, fits_int64
 
-# As ros2/demos' introspection_service: `ros2 param set /add_two_ints_server
-# service_configure_introspection contents` lets `ros2 service echo /add_two_ints` see calls.
+# As ros2/demos' introspection_service, when started with `--ros-args -p
+# service_configure_introspection:=disabled` (or any of the states): `ros2 param set
+# /add_two_ints_server service_configure_introspection contents` then lets `ros2 service echo
+# /add_two_ints` see calls. Without that override the node has demo_nodes_py's parameters.
 INTROSPECTION_PARAMETER = 'service_configure_introspection'
 INTROSPECTION_STATES = {'disabled': ServiceIntrospectionState.OFF,
                         'metadata': ServiceIntrospectionState.METADATA,
@@ -25,11 +27,13 @@ class AddTwoIntsServer(Node):
         self.service = self.create_service(AddTwoInts, 'add_two_ints', self.on_add_two_ints)
         self.add_on_set_parameters_callback(self.on_set_parameters)
         self.add_post_set_parameters_callback(self.on_parameters_set)
-        try:
-            self.declare_parameter(INTROSPECTION_PARAMETER, 'disabled')
-        except (InvalidParameterValueException, InvalidParameterTypeException) as error:
-            self.get_logger().error(f'Ignoring the command-line value: {error}')
-            self.declare_parameter(INTROSPECTION_PARAMETER, 'disabled', ignore_override=True)
+        # rclpy keeps the start-up overrides (-p, params files) in this attribute only.
+        if INTROSPECTION_PARAMETER in self._parameter_overrides:
+            try:
+                self.declare_parameter(INTROSPECTION_PARAMETER, 'disabled')
+            except (InvalidParameterValueException, InvalidParameterTypeException) as error:
+                self.get_logger().error(f'Ignoring the command-line value: {error}')
+                self.declare_parameter(INTROSPECTION_PARAMETER, 'disabled', ignore_override=True)
         self.get_logger().info('Ready to add two ints on /add_two_ints')
 
     def on_set_parameters(self, parameters: list[Parameter]) -> SetParametersResult:

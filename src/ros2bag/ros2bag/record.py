@@ -24,10 +24,12 @@ from ros2bag.metadata import (
     qos_to_dict,
     request_qos_for_offers,
 )
-from ros2bag.session import SpaceKey, make_executor, ros_node, spin_until
+from ros2bag.session import SpaceKey, exit_now, make_executor, ros_node, spin_until
 from ros2bag.storage import STORAGES, BagWriter
 
-DRAIN_BOUND = 5.0  # seconds a stopping recorder may spend taking queued messages
+# Seconds a stopping recorder may spend recording what had arrived before the stop (each
+# queue holds up to 1000 messages: a recorder far behind loses the rest, and exits in time).
+DRAIN_BOUND = 0.25
 MATCH_BOUND = 2.0  # seconds a new subscription may take to match its publishers
 UNKNOWN_TOPIC_WARNING_AFTER = 5.0  # seconds without a requested topic before saying so
 
@@ -128,7 +130,11 @@ def main(args: argparse.Namespace) -> int | str:
         return f'[ERROR] [ros2bag]: {failure}'
     writer.custom_data = dict(pair.split('=', 1) for pair in args.custom_data)
     with ros_node(args.node_name) as (node, stop):
-        return Recorder(node, writer, args).run(stop)
+        result = Recorder(node, writer, args).run(stop)
+    # The bag is closed and the context shut down (its log files flushed): only static
+    # teardown is left, where Fast DDS's DomainParticipantFactory destructor sleeps 100 ms.
+    # Exit now, so that a `ros2 bag info` typed right after Ctrl-C meets a finished recorder.
+    exit_now(result)
 
 
 class Recorder:
@@ -248,15 +254,7 @@ class Recorder:
             type_description_hash=_type_hash(infos)))
 
         def on_message(data: bytes, info: dict) -> None:
-            self.taken += 1
-            if self.paused or self.failed:
-                return
-            try:
-                self.writer.write(name, data, info['received_timestamp'],
-                                  info['source_timestamp'],
-                                  info.get('publication_sequence_number') or 0)
-            except (OSError, BagError) as error:
-                self.failed = f'Failed to write to bag: {one_line(error)}'
+            self._record(name, data, info)
 
         def on_message_events(data: bytes) -> None:
             stamp = time.time_ns()
@@ -267,6 +265,16 @@ class Recorder:
             request_qos_for_offers(offers), raw=True)
         self.log.info(f"Subscribed to topic '{name}'")
         return True
+
+    def _record(self, name: str, data: bytes, info: dict) -> None:
+        self.taken += 1
+        if self.paused or self.failed:
+            return
+        try:
+            self.writer.write(name, data, info['received_timestamp'], info['source_timestamp'],
+                              info.get('publication_sequence_number') or 0)
+        except (OSError, BagError) as error:
+            self.failed = f'Failed to write to bag: {one_line(error)}'
 
     # ---- pause ----
     def toggle_paused(self) -> None:
@@ -292,10 +300,11 @@ class Recorder:
                 self.log.info('Recording...')
             flush_timer = self.node.create_timer(0.5, self._flush)
             spin_until(executor, self.node, lambda: stop.is_set() or bool(self.failed))
+            stopped_ns = time.time_ns()
             flush_timer.cancel()
             self.node.destroy_timer(flush_timer)
             self._stop_discovery()
-            self._drain(executor)
+            self._drain(stopped_ns)
         finally:
             self.keys.close()
             self._stop_discovery()
@@ -314,18 +323,31 @@ class Recorder:
             return f'[ERROR] [ros2bag]: {self.failed or closing_error}{hint}'
         return 0
 
-    def _drain(self, executor: Any) -> None:
-        """Take what the middleware already holds (acknowledged to its publishers).
+    def _drain(self, stopped_ns: int) -> None:
+        """Record what had arrived when the stop was seen (acknowledged to its publishers).
 
         A stop request ends the spin loop between two messages; the subscriptions' queues
-        may still hold messages their publishers count as delivered: record them too.
+        may still hold messages their publishers count as delivered: record them too, taken
+        straight from each queue up to the first one received after the stop. (Spinning the
+        executor until nothing came took whatever kept arriving as well: with one topic at
+        62.5 Hz the recorder drained until its 5 s bound, issue 24.)
         """
+        from rclpy.exceptions import InvalidHandle
+
         deadline = time.monotonic() + DRAIN_BOUND
-        while not self.failed and time.monotonic() < deadline:
-            before = self.taken
-            executor.spin_once(timeout_sec=0.05)
-            if self.taken == before:
-                return
+        for name, subscription in self.subscriptions.items():
+            while not self.failed and time.monotonic() < deadline:
+                try:
+                    with subscription.handle:
+                        taken = subscription.handle.take_message(subscription.msg_type, True)
+                except InvalidHandle:
+                    break
+                if taken is None:
+                    break
+                data, info = taken
+                if info['received_timestamp'] > stopped_ns:
+                    break  # arrived after the stop, as everything queued behind it
+                self._record(name, data, info)
 
     def _flush(self) -> None:
         if self.failed:

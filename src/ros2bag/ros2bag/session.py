@@ -12,7 +12,7 @@ import sys
 import threading
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from typing import Any
+from typing import Any, NoReturn
 
 SIGNAL_CHECK_PERIOD = 0.1
 
@@ -37,6 +37,20 @@ def ros_node(name: str) -> Iterator[tuple[Any, threading.Event]]:
         rclpy.try_shutdown(context=context)
         for signum, handler in previous.items():
             signal.signal(signum, handler)
+
+
+def exit_now(result: int | str) -> NoReturn:
+    """End the process with `result` as `ros2` would (a string: on stderr, status 1), without
+    Python's and the libraries' teardown. Only once everything is closed and flushed."""
+    code = result if isinstance(result, int) else 1
+    try:
+        if isinstance(result, str):
+            print(result, file=sys.stderr)
+        sys.stdout.flush()
+        sys.stderr.flush()
+    except (BrokenPipeError, ValueError):
+        pass  # nobody reads any more (`| head`), or a stream was closed
+    os._exit(code)
 
 
 def make_executor(node: Any, events: bool = False) -> Any:

@@ -37,6 +37,8 @@ PAGES = {
     'actions': ('/actions', 'Actions'),
     'turtlesim': ('/turtlesim', 'Turtlesim'),
     'foxglove': ('/foxglove', 'Foxglove'),
+    'rviz': ('/rviz', 'RViz'),
+    'joint_state_publisher': ('/joint_state_publisher', 'Joint State Publisher'),
 }
 
 

@@ -18,7 +18,7 @@ from typing import Any
 from aiohttp import WSMsgType, web
 from node_runtime.discovery import announce_often
 
-from rqt_web import forms, instance, security
+from rqt_web import forms, instance, rviz, security
 from rqt_web.ros_bridge import RosBridge
 
 STATIC = Path(__file__).resolve().parent / 'static'
@@ -27,6 +27,11 @@ VENDOR_FILES = {
     'cytoscape.min.js': 'cytoscape/dist/cytoscape.min.js',
     'cytoscape-dagre.js': 'cytoscape-dagre/dist/cytoscape-dagre.js',
     'cytoscape-svg.js': 'cytoscape-svg/cytoscape-svg.js',
+    # three.js for the RViz page: the ES modules, loaded through an import map
+    'three.module.js': 'three/build/three.module.js',
+    'three.core.js': 'three/build/three.core.js',
+    'OrbitControls.js': 'three/examples/jsm/controls/OrbitControls.js',
+    'STLLoader.js': 'three/examples/jsm/loaders/STLLoader.js',
 }
 SERVICE_TIMEOUT_MAX = 60.0
 MONITOR_WINDOW = 5.0  # seconds of messages the Topics page's Hz and bandwidth average over
@@ -477,6 +482,7 @@ def make_app(token: str, bind_host: str, port_holder: dict) -> web.Application:
         web.post('/api/parameters/set', set_parameter), web.get('/ws', websocket),
         web.get('/static/{name}', static_file), web.get('/vendor/{name}', vendor_file),
         web.get('/{page}', page)])
+    rviz.add_routes(app)  # /api/rviz/...: .rviz files, robot description, meshes
 
     async def start_ros(app: web.Application) -> None:
         bridge = RosBridge(asyncio.get_running_loop())

@@ -12,6 +12,7 @@ from rclpy.node import Node
 from std_srvs.srv import Empty
 from turtlesim.msg import Pose
 
+from turtlesim_py.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
 from turtlesim_py.turtle import TOPIC_QOS
 
 PI = 3.141592
@@ -43,9 +44,10 @@ def wrap_heading(theta: float) -> float:
     return value
 
 
-class DrawSquare(Node):
+class DrawSquare(RclcppParameters, Node):
     def __init__(self) -> None:
         super().__init__('draw_square')
+        declare_rclcpp_parameters(self)  # upstream's is an rclcpp node
         self.twist_pub = self.create_publisher(Twist, 'turtle1/cmd_vel', TOPIC_QOS)
         self.create_subscription(Pose, 'turtle1/pose', self._on_pose, TOPIC_QOS)
         self.reset_client = self.create_client(Empty, 'reset')

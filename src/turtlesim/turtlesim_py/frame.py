@@ -143,13 +143,17 @@ class TurtleFrame(RclcppParameters, Node):
             type=ParameterType.PARAMETER_BOOL,
             description='If true, then turtles will be holonomic'))
         self._holonomic = bool(self.get_parameter('holonomic').value)
-        # --service-introspection gives the default; the parameter can change it at any time.
-        self._declare(INTROSPECTION_PARAMETER,
-                      'disabled' if introspection == 'off' else introspection,
-                      ParameterDescriptor(type=ParameterType.PARAMETER_STRING,
-                                          description='Service introspection of every service: '
-                                          'disabled, metadata or contents'))
-        self.introspection = INTROSPECTION[self.get_parameter(INTROSPECTION_PARAMETER).value]
+        # Upstream turtlesim has no introspection parameter (it is demo_nodes_cpp's): declare
+        # it only when asked at start, by --service-introspection or an override (-p or a
+        # params file), so `ros2 param list/dump` print what Jazzy prints. Once declared, it
+        # switches introspection at any time. rclpy keeps the overrides in this attribute only.
+        if introspection != 'off' or INTROSPECTION_PARAMETER in self._parameter_overrides:
+            self._declare(INTROSPECTION_PARAMETER,
+                          'disabled' if introspection == 'off' else introspection,
+                          ParameterDescriptor(type=ParameterType.PARAMETER_STRING,
+                                              description='Service introspection of every '
+                                              'service: disabled, metadata or contents'))
+            self.introspection = INTROSPECTION[self.get_parameter(INTROSPECTION_PARAMETER).value]
         self.add_post_set_parameters_callback(self._parameters_set)
         guard_parameter_services(self)
         self.create_subscription(ParameterEvent, '/parameter_events', self._on_parameter_event,

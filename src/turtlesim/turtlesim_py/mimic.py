@@ -9,6 +9,7 @@ from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.node import Node
 from turtlesim.msg import Pose
 
+from turtlesim_py.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
 from turtlesim_py.turtle import TOPIC_QOS
 
 
@@ -19,9 +20,10 @@ def pose_to_twist(pose: Pose) -> Twist:
     return twist
 
 
-class Mimic(Node):
+class Mimic(RclcppParameters, Node):
     def __init__(self) -> None:
         super().__init__('turtle_mimic')
+        declare_rclcpp_parameters(self)  # upstream's is an rclcpp node
         self.twist_pub = self.create_publisher(Twist, 'output/cmd_vel', TOPIC_QOS)
         self.create_subscription(Pose, 'input/pose', self._on_pose, TOPIC_QOS)
 

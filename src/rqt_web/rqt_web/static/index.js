@@ -11,6 +11,8 @@
     ['/actions', 'Actions', 'send goals, see feedback and results'],
     ['/turtlesim', 'Turtlesim', 'the live canvas, keyboard teleop'],
     ['/foxglove', 'Foxglove', 'connect Foxglove or Lichtblick (foxglove_bridge)'],
+    ['/rviz', 'RViz', 'the robot model and tf2 frames in 3D (rviz2)'],
+    ['/joint_state_publisher', 'Joint State Publisher', 'a slider per movable joint (joint_state_publisher_gui)'],
   ];
   const list = rqt.el('ul');
   for (const [href, name, what] of tools) {

@@ -1,0 +1,523 @@
+'use strict';
+// RViz: a 3D view of tf2 frames and the robot model, as rviz2 draws them (Z up, fixed frame
+// at the origin). three.js (npm, served from /vendor) renders; the server gives the .rviz
+// file (?config=), the robot description and every frame's pose in the fixed frame (tf_feed).
+// window.rviz exposes the state for tests: frames, per-display status, model links.
+(() => {
+  const main = document.getElementById('main');
+  const params = new URLSearchParams(location.search);
+  const PERIOD_MS = 30;  // TF poll: the model follows /tf within about one period
+  const state = {fixedFrame: params.get('fixed_frame') || 'map', background: [48, 48, 48],
+    displays: [], frames: {}, status: {}, links: [], ready: false, renders: 0, config: null};
+  window.rviz = state;
+
+  const fixedInput = rqt.el('input', {id: 'rviz-fixed-frame', value: state.fixedFrame, size: 16});
+  const list = rqt.el('ul', {id: 'rviz-displays'});
+  const note = rqt.el('span', {id: 'rviz-note', class: 'keys'});
+  const view = rqt.el('div', {id: 'rviz-view', style: 'width:100%;height:560px;position:relative'});
+  main.append(rqt.el('div', {class: 'row'}, rqt.el('label', {}, 'Fixed Frame ', fixedInput),
+    rqt.el('button', {id: 'rviz-top', text: 'Top view'}),
+    rqt.el('button', {id: 'rviz-save', text: 'Save Config As...'}), note), list, view);
+  fixedInput.addEventListener('change', () => { state.fixedFrame = fixedInput.value.trim() || 'map'; });
+
+  const map = document.createElement('script');
+  map.type = 'importmap';
+  map.textContent = JSON.stringify({imports: {three: '/vendor/three.module.js'}});
+  document.head.append(map);
+
+  const DEFAULT_DISPLAYS = [
+    {class: 'rviz_default_plugins/Grid', name: 'Grid', enabled: true},
+    {class: 'rviz_default_plugins/TF', name: 'TF', enabled: true},
+    {class: 'rviz_default_plugins/RobotModel', name: 'RobotModel', enabled: true,
+      topic: '/robot_description', alpha: 1}];
+
+  const setStatus = (name, text) => {
+    state.status[name] = text;
+    const item = document.querySelector(`#rviz-displays li[data-name="${CSS.escape(name)}"] .status`);
+    if (item) item.textContent = text;
+  };
+
+  async function loadConfig() {
+    const path = params.get('config');
+    if (!path) return {fixed_frame: state.fixedFrame, background: state.background, displays: DEFAULT_DISPLAYS};
+    try {
+      return await rqt.get(`/api/rviz/config?path=${encodeURIComponent(path)}`);
+    } catch (error) {
+      note.textContent = String(error.message || error);
+      return {fixed_frame: state.fixedFrame, background: state.background, displays: DEFAULT_DISPLAYS};
+    }
+  }
+
+  async function start() {
+    const THREE = await import('three');
+    const {OrbitControls} = await import('/vendor/OrbitControls.js');
+    const {STLLoader} = await import('/vendor/STLLoader.js');
+    const config = await loadConfig();
+    state.config = config;
+    if (!params.get('fixed_frame')) state.fixedFrame = config.fixed_frame;
+    fixedInput.value = state.fixedFrame;
+    state.displays = config.displays;
+    for (const d of state.displays) {
+      list.append(rqt.el('li', {'data-name': d.name}, `${d.name} (${d.class.split('/').pop()}`
+        + `${d.topic ? ' ' + d.topic : ''}): `, rqt.el('span', {class: 'status', text: d.enabled ? 'OK' : 'disabled'})));
+    }
+    // Colours as given (rviz's 0-255 background, URDF rgba), without sRGB conversion.
+    THREE.ColorManagement.enabled = false;
+    const renderer = new THREE.WebGLRenderer({antialias: true, preserveDrawingBuffer: true});
+    renderer.outputColorSpace = THREE.LinearSRGBColorSpace;
+    renderer.setSize(view.clientWidth, view.clientHeight);
+    const [r, g, b] = config.background;
+    renderer.setClearColor(new THREE.Color(r / 255, g / 255, b / 255));
+    view.append(renderer.domElement);
+    const scene = new THREE.Scene();
+    scene.add(new THREE.AmbientLight(0xffffff, 0.6));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+    sun.position.set(3, 2, 6);
+    scene.add(sun);
+    const camera = new THREE.PerspectiveCamera(45, view.clientWidth / view.clientHeight, 0.01, 1000);
+    camera.up.set(0, 0, 1);
+    const v = config.view || {};
+    const distance = Number(v.Distance) || 10, pitch = Number(v.Pitch ?? 0.785), yaw = Number(v.Yaw ?? 0.785);
+    camera.position.set(distance * Math.cos(pitch) * Math.cos(yaw), distance * Math.cos(pitch) * Math.sin(yaw),
+      distance * Math.sin(pitch));
+    const controls = new OrbitControls(camera, renderer.domElement);
+    controls.target.set(0, 0, 0);
+    controls.update();
+    document.getElementById('rviz-top').addEventListener('click', () => {
+      camera.position.set(0, -0.0001, camera.position.length());
+      controls.target.set(0, 0, 0);
+      controls.update();
+    });
+    state.camera = camera;
+    // Where a point of the fixed frame appears in the page (CSS pixels): for tests and bench.
+    state.project = (x, y, z) => {
+      const p = new THREE.Vector3(x, y, z).project(camera);
+      const box = renderer.domElement.getBoundingClientRect();
+      return [box.left + (p.x + 1) / 2 * box.width, box.top + (1 - p.y) / 2 * box.height];
+    };
+
+    // Save Config: the page's setup in upstream rviz2's .rviz YAML layout (keys and nesting
+    // as rviz2 writes them), downloaded as a file.
+    const quote = (v) => (typeof v === 'string' && (v === '' || /[:#'"{}\[\],&*?|<>=!%@`-]/.test(v[0]) || v.includes(': '))
+      ? JSON.stringify(v) : String(v));
+    state.saveConfig = () => {
+      const lines = ['Panels:', '  - Class: rviz_common/Displays', '    Name: Displays',
+        '  - Class: rviz_common/Views', '    Name: Views', 'Visualization Manager:', '  Class: ""',
+        '  Displays:'];
+      for (const d of state.displays) {
+        const settings = {...(d.settings || {}), Class: d.class, Name: d.name, Value: d.enabled};
+        if (d.class.endsWith('/RobotModel')) delete settings.Topic;
+        const keys = Object.keys(settings).sort();
+        keys.forEach((key, i) => lines.push(`${i ? '      ' : '    - '}${key}: ${quote(settings[key])}`));
+        if (d.topic && d.class.endsWith('/RobotModel')) lines.push('      Description Topic:', `        Value: ${d.topic}`);
+        else if (d.topic) lines.push('      Topic:', `        Value: ${d.topic}`);
+      }
+      const [br, bg, bb] = config.background;
+      const offset = camera.position.clone().sub(controls.target);
+      const dist = offset.length();
+      lines.push('  Enabled: true', '  Global Options:', `    Background Color: ${br}; ${bg}; ${bb}`,
+        `    Fixed Frame: ${quote(state.fixedFrame)}`, '    Frame Rate: 30', '  Name: root',
+        '  Tools:', '    - Class: rviz_default_plugins/MoveCamera', '  Value: true', '  Views:', '    Current:',
+        '      Class: rviz_default_plugins/Orbit', `      Distance: ${dist.toFixed(4)}`,
+        '      Focal Point:', `        X: ${controls.target.x}`, `        Y: ${controls.target.y}`, `        Z: ${controls.target.z}`,
+        '      Name: Current View', `      Pitch: ${Math.asin(offset.z / dist).toFixed(4)}`,
+        '      Target Frame: <Fixed Frame>', '      Value: Orbit (rviz)', `      Yaw: ${Math.atan2(offset.y, offset.x).toFixed(4)}`,
+        '    Saved: ~', 'Window Geometry:', '  Height: 800', '  Width: 1200', '');
+      return lines.join('\n');
+    };
+    document.getElementById('rviz-save').addEventListener('click', () => {
+      const link = rqt.el('a', {href: URL.createObjectURL(new Blob([state.saveConfig()], {type: 'text/yaml'})),
+        download: (params.get('config') || 'config.rviz').split('/').pop()});
+      link.click();
+    });
+
+    const enabled = (cls) => state.displays.filter((d) => d.enabled && d.class.endsWith(cls));
+    // Grid: rviz's default, 10 cells of 1 m on the XY plane of the fixed frame.
+    for (const d of enabled('/Grid')) {
+      const cells = Number(d.settings?.['Plane Cell Count']) || 10;
+      const size = (Number(d.settings?.['Cell Size']) || 1) * cells;
+      const grid = new THREE.GridHelper(size, cells, 0xa0a0a4, 0xa0a0a4);
+      grid.rotation.x = Math.PI / 2;
+      scene.add(grid);
+      setStatus(d.name, 'OK');
+    }
+    const tfDisplay = enabled('/TF')[0];
+    const tfGroup = new THREE.Group();
+    scene.add(tfGroup);
+    const tfObjects = {};
+    const label = (text) => {
+      const canvas = document.createElement('canvas');
+      canvas.width = 256; canvas.height = 48;
+      const ctx = canvas.getContext('2d');
+      ctx.font = '28px sans-serif'; ctx.fillStyle = '#ffffff'; ctx.fillText(text, 4, 34);
+      const sprite = new THREE.Sprite(new THREE.SpriteMaterial({map: new THREE.CanvasTexture(canvas), depthTest: false}));
+      sprite.scale.set(0.5, 0.094, 1);
+      sprite.position.set(0, 0, 0.08);
+      return sprite;
+    };
+    const tfFrame = (name) => {
+      if (!tfObjects[name]) {
+        const group = new THREE.Group();
+        const scale = Number(tfDisplay?.settings?.['Marker Scale']) || 1;
+        const axes = new THREE.AxesHelper(0.25 * scale);
+        group.add(axes, label(name));
+        const line = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3()]),
+          new THREE.LineBasicMaterial({color: 0xff66cc}));
+        tfGroup.add(group, line);
+        tfObjects[name] = {group, line};
+      }
+      return tfObjects[name];
+    };
+
+    // RobotModel: the URDF's visuals, each link placed where tf2 puts its frame.
+    const robotDisplay = enabled('/RobotModel')[0];
+    const robot = new THREE.Group();
+    scene.add(robot);
+    let modelCount = -1;
+    const linkGroups = {};
+    const stl = new STLLoader();
+    const nums = (text, n) => {
+      const values = (text || '').trim().split(/\s+/).filter((s) => s).map(Number);
+      return values.length === n && values.every(Number.isFinite) ? values : Array(n).fill(0);
+    };
+    const resourceUrl = (uri) => `/api/rviz/resource?uri=${encodeURIComponent(uri)}`;
+    const buildModel = (xml) => {
+      robot.clear();
+      for (const key of Object.keys(linkGroups)) delete linkGroups[key];
+      const doc = new DOMParser().parseFromString(xml, 'application/xml');
+      const root = doc.documentElement;
+      if (!root || root.nodeName !== 'robot') {
+        setStatus(robotDisplay.name, 'URDF: not a <robot> document');
+        return;
+      }
+      const alpha = Number(robotDisplay.alpha ?? 1);
+      const colours = {};
+      for (const m of root.querySelectorAll(':scope > material')) {
+        const c = m.querySelector('color');
+        if (c) colours[m.getAttribute('name')] = nums(c.getAttribute('rgba'), 4);
+      }
+      const problems = [];
+      for (const link of root.querySelectorAll(':scope > link')) {
+        const name = link.getAttribute('name');
+        const group = new THREE.Group();
+        group.visible = false;
+        linkGroups[name] = group;
+        robot.add(group);
+        for (const visual of link.querySelectorAll(':scope > visual')) {
+          const geometry = visual.querySelector('geometry > *');
+          if (!geometry) continue;
+          const mat = visual.querySelector(':scope > material');
+          let rgba = [0.8, 0.8, 0.8, 1];
+          if (mat) {
+            const c = mat.querySelector('color');
+            rgba = c ? nums(c.getAttribute('rgba'), 4) : (colours[mat.getAttribute('name')] || rgba);
+          }
+          const material = new THREE.MeshLambertMaterial({color: new THREE.Color(rgba[0], rgba[1], rgba[2]),
+            transparent: alpha * rgba[3] < 1, opacity: alpha * rgba[3]});
+          const holder = new THREE.Group();
+          const origin = visual.querySelector(':scope > origin');
+          if (origin) {
+            holder.position.set(...nums(origin.getAttribute('xyz'), 3));
+            const [rr, pp, yy] = nums(origin.getAttribute('rpy'), 3);
+            holder.rotation.set(rr, pp, yy, 'ZYX');
+          }
+          const kind = geometry.nodeName;
+          if (kind === 'box') {
+            holder.add(new THREE.Mesh(new THREE.BoxGeometry(...nums(geometry.getAttribute('size'), 3)), material));
+          } else if (kind === 'cylinder') {
+            const radius = Number(geometry.getAttribute('radius')), length = Number(geometry.getAttribute('length'));
+            const mesh = new THREE.Mesh(new THREE.CylinderGeometry(radius, radius, length, 32), material);
+            mesh.rotation.x = Math.PI / 2;  // three's cylinders run along y, URDF's along z
+            holder.add(mesh);
+          } else if (kind === 'sphere') {
+            holder.add(new THREE.Mesh(new THREE.SphereGeometry(Number(geometry.getAttribute('radius')), 32, 16), material));
+          } else if (kind === 'mesh') {
+            const uri = geometry.getAttribute('filename') || '';
+            const scale = geometry.getAttribute('scale') ? nums(geometry.getAttribute('scale'), 3) : [1, 1, 1];
+            if (!uri.toLowerCase().endsWith('.stl')) {
+              problems.push(`link '${name}': mesh ${uri}: only STL meshes are drawn`);
+            } else {
+              stl.load(resourceUrl(uri), (geo) => {
+                const mesh = new THREE.Mesh(geo, material);
+                mesh.scale.set(...scale);
+                holder.add(mesh);
+              }, undefined, () => setStatus(robotDisplay.name, `Could not load mesh ${uri} of link '${name}'`));
+            }
+          }
+          group.add(holder);
+        }
+      }
+      setStatus(robotDisplay.name, problems.length ? problems[0] : 'OK');
+      state.links = Object.keys(linkGroups);
+    };
+    const pollDescription = async () => {
+      if (!robotDisplay) return;
+      try {
+        const d = await rqt.get(`/api/rviz/description?topic=${encodeURIComponent(robotDisplay.topic || '/robot_description')}`);
+        if (d.count !== modelCount) {
+          modelCount = d.count;
+          if (d.urdf) buildModel(d.urdf);
+          else setStatus(robotDisplay.name, `No robot description on ${d.topic}`);
+        }
+      } catch (error) {
+        setStatus(robotDisplay.name, String(error.message || error));
+      }
+    };
+
+    const place = (object, pose) => {
+      object.position.set(...pose.translation);
+      object.quaternion.set(...pose.rotation);
+    };
+    const pollTf = async () => {
+      const fixed = state.fixedFrame;
+      const data = await rqt.get(`/api/tf/poses?fixed_frame=${encodeURIComponent(fixed)}`);
+      state.frames = data.poses;
+      const parents = {};
+      for (const [name, pose] of Object.entries(data.poses)) {
+        if (tfDisplay && !pose.error) {
+          const item = tfFrame(name);
+          place(item.group, pose);
+          item.group.visible = true;
+          parents[name] = item;
+        } else if (tfObjects[name]) {
+          tfObjects[name].group.visible = false;
+        }
+      }
+      if (tfDisplay) {
+        const frames = await rqt.get('/api/tf/frames');
+        for (const [child, info] of Object.entries(frames.frames)) {
+          const c = data.poses[child], p = data.poses[info.parent];
+          const item = tfObjects[child];
+          if (!item) continue;
+          item.line.visible = Boolean(c && p && !c.error && !p.error);
+          if (item.line.visible) {
+            item.line.geometry.setFromPoints([new THREE.Vector3(...c.translation), new THREE.Vector3(...p.translation)]);
+          }
+        }
+        const names = Object.keys(data.poses).filter((n) => n !== fixed);
+        setStatus(tfDisplay.name, names.length || data.poses[fixed] && !data.poses[fixed].error ? 'OK'
+          : `Fixed Frame [${fixed}] does not exist`);
+      }
+      if (robotDisplay && state.links.length) {
+        const missing = [];
+        for (const [name, group] of Object.entries(linkGroups)) {
+          const pose = data.poses[name];
+          if (pose && !pose.error) {
+            place(group, pose);
+            group.visible = true;
+          } else {
+            group.visible = false;
+            missing.push(name);
+          }
+        }
+        if (missing.length) setStatus(robotDisplay.name, `No transform from [${missing[0]}] to [${fixed}]`);
+        else if (state.status[robotDisplay.name]?.startsWith('No transform')) setStatus(robotDisplay.name, 'OK');
+      }
+      state.updated = performance.now();
+    };
+
+    // Marker and MarkerArray: the markers alive on each display's topic, in their frame.
+    const markerDisplays = [...enabled('/Marker'), ...enabled('/MarkerArray')].map((d) => {
+      const group = new THREE.Group();
+      scene.add(group);
+      return {d, group, type: d.class.endsWith('/MarkerArray') ? 'MarkerArray' : 'Marker'};
+    });
+    const colour = (c) => new THREE.Color(c[0], c[1], c[2]);
+    const shapeMaterial = (c) => new THREE.MeshLambertMaterial({color: colour(c), transparent: c[3] < 1, opacity: c[3]});
+    const markerObject = (m) => {
+      const [sx, sy, sz] = m.scale;
+      const pts = m.points.map((p) => new THREE.Vector3(...p));
+      switch (m.type) {
+        case 0: {  // ARROW: along x, scale = length, width, height
+          const dir = new THREE.Vector3(1, 0, 0);
+          return new THREE.ArrowHelper(dir, new THREE.Vector3(), sx, colour(m.color), 0.23 * sx, sy);
+        }
+        case 1: return new THREE.Mesh(new THREE.BoxGeometry(sx, sy, sz), shapeMaterial(m.color));
+        case 2: {
+          const mesh = new THREE.Mesh(new THREE.SphereGeometry(0.5, 24, 12), shapeMaterial(m.color));
+          mesh.scale.set(sx, sy, sz);
+          return mesh;
+        }
+        case 3: {
+          const mesh = new THREE.Mesh(new THREE.CylinderGeometry(0.5, 0.5, 1, 24), shapeMaterial(m.color));
+          mesh.scale.set(sx, sz, sy);
+          mesh.rotation.x = Math.PI / 2;
+          const holder = new THREE.Group();
+          holder.add(mesh);
+          return holder;
+        }
+        case 4: case 5: {  // LINE_STRIP, LINE_LIST
+          const geo = new THREE.BufferGeometry().setFromPoints(pts);
+          const mat = new THREE.LineBasicMaterial({color: colour(m.color)});
+          return m.type === 4 ? new THREE.Line(geo, mat) : new THREE.LineSegments(geo, mat);
+        }
+        case 6: case 7: {  // CUBE_LIST, SPHERE_LIST
+          const geo = m.type === 6 ? new THREE.BoxGeometry(sx, sy, sz) : new THREE.SphereGeometry(sx / 2, 16, 8);
+          const holder = new THREE.Group();
+          pts.forEach((p, i) => {
+            const mesh = new THREE.Mesh(geo, shapeMaterial(m.colors[i] || m.color));
+            mesh.position.copy(p);
+            holder.add(mesh);
+          });
+          return holder;
+        }
+        case 8: {  // POINTS
+          const geo = new THREE.BufferGeometry().setFromPoints(pts);
+          return new THREE.Points(geo, new THREE.PointsMaterial({color: colour(m.color), size: sx}));
+        }
+        case 9: {  // TEXT_VIEW_FACING
+          const sprite = label(m.text);
+          sprite.scale.set(sz * 5.3, sz, 1);
+          sprite.position.set(0, 0, 0);
+          return sprite;
+        }
+        case 11: {  // TRIANGLE_LIST
+          const geo = new THREE.BufferGeometry().setFromPoints(pts);
+          geo.computeVertexNormals();
+          const mat = shapeMaterial(m.color);
+          mat.side = THREE.DoubleSide;
+          return new THREE.Mesh(geo, mat);
+        }
+        default: return null;
+      }
+    };
+    const pollMarkers = async () => {
+      for (const md of markerDisplays) {
+        const data = await rqt.get(`/api/rviz/markers?topic=${encodeURIComponent(md.d.topic || '/visualization_marker')}&type=${md.type}`);
+        md.group.clear();
+        const problems = [];
+        for (const m of data.markers) {
+          const frame = state.frames[m.frame];
+          if (!frame || frame.error) {
+            problems.push(`No transform from [${m.frame}] to [${state.fixedFrame}]`);
+            continue;
+          }
+          const object = markerObject(m);
+          if (!object) {
+            problems.push(`marker ${m.ns}/${m.id}: type ${m.type} is not drawn`);
+            continue;
+          }
+          const outer = new THREE.Group();
+          place(outer, frame);
+          const inner = new THREE.Group();
+          inner.position.set(...m.position);
+          inner.quaternion.set(...m.orientation);
+          inner.add(object);
+          outer.add(inner);
+          md.group.add(outer);
+        }
+        setStatus(md.d.name, problems.length ? problems[0] : `OK (${data.markers.length} markers)`);
+      }
+    };
+    const tickMarkers = async () => {
+      try {
+        await pollMarkers();
+      } catch (error) {
+        note.textContent = String(error.message || error);
+      }
+      setTimeout(tickMarkers, 100);
+    };
+    if (markerDisplays.length) tickMarkers();
+
+    // Axes, and the displays of one message type: Pose, PoseArray, Path, Odometry, LaserScan.
+    const axesDisplays = enabled('/Axes').map((d) => {
+      const length = Number(d.settings?.Length) || 1;
+      const axes = new THREE.AxesHelper(length);
+      scene.add(axes);
+      return {d, axes, frame: d.settings?.['Reference Frame'] || '<Fixed Frame>'};
+    });
+    const TYPES = {Pose: 'geometry_msgs/msg/PoseStamped', PoseArray: 'geometry_msgs/msg/PoseArray',
+      Path: 'nav_msgs/msg/Path', Odometry: 'nav_msgs/msg/Odometry', LaserScan: 'sensor_msgs/msg/LaserScan'};
+    const topicDisplays = state.displays.filter((d) => d.enabled && TYPES[d.class.split('/').pop()]).map((d) => {
+      const group = new THREE.Group();
+      scene.add(group);
+      return {d, group, kind: d.class.split('/').pop()};
+    });
+    const arrow = (pose, hex) => {
+      const o = new THREE.Group();
+      o.position.set(pose.position.x, pose.position.y, pose.position.z);
+      const q = pose.orientation;
+      o.quaternion.set(q.x, q.y, q.z, q.w);
+      o.add(new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, hex, 0.3, 0.1));
+      return o;
+    };
+    const drawMessage = (kind, msg) => {
+      const holder = new THREE.Group();
+      if (kind === 'Pose') holder.add(arrow(msg.pose, 0xff1919));
+      if (kind === 'Odometry') holder.add(arrow(msg.pose.pose, 0xff1919));
+      if (kind === 'PoseArray') for (const pose of msg.poses) holder.add(arrow(pose, 0xff1919));
+      if (kind === 'Path') {
+        const points = msg.poses.map((p) => new THREE.Vector3(p.pose.position.x, p.pose.position.y, p.pose.position.z));
+        holder.add(new THREE.Line(new THREE.BufferGeometry().setFromPoints(points),
+          new THREE.LineBasicMaterial({color: 0x19ff00})));
+      }
+      if (kind === 'LaserScan') {
+        const points = [];
+        msg.ranges.forEach((r, i) => {
+          if (!(r >= msg.range_min && r <= msg.range_max)) return;
+          const a = msg.angle_min + i * msg.angle_increment;
+          points.push(new THREE.Vector3(r * Math.cos(a), r * Math.sin(a), 0));
+        });
+        holder.add(new THREE.Points(new THREE.BufferGeometry().setFromPoints(points),
+          new THREE.PointsMaterial({color: 0xffffff, size: 0.05})));
+      }
+      return holder;
+    };
+    const pollTopics = async () => {
+      for (const a of axesDisplays) {
+        const frame = a.frame === '<Fixed Frame>' ? state.fixedFrame : a.frame;
+        const pose = state.frames[frame];
+        a.axes.visible = Boolean(pose && !pose.error);
+        if (a.axes.visible) place(a.axes, pose);
+        setStatus(a.d.name, a.axes.visible ? 'OK' : `No transform from [${frame}] to [${state.fixedFrame}]`);
+      }
+      for (const t of topicDisplays) {
+        const data = await rqt.get(`/api/rviz/latest?topic=${encodeURIComponent(t.d.topic || '')}&type=${TYPES[t.kind]}`);
+        t.group.clear();
+        if (!data.msg) {
+          setStatus(t.d.name, `No messages received on ${t.d.topic}`);
+          continue;
+        }
+        const frameId = data.msg.header.frame_id;
+        const pose = state.frames[frameId];
+        if (!pose || pose.error) {
+          setStatus(t.d.name, `No transform from [${frameId}] to [${state.fixedFrame}]`);
+          continue;
+        }
+        place(t.group, pose);
+        t.group.add(drawMessage(t.kind, data.msg));
+        setStatus(t.d.name, 'OK');
+      }
+    };
+    const tickTopics = async () => {
+      try {
+        await pollTopics();
+      } catch (error) {
+        note.textContent = String(error.message || error);
+      }
+      setTimeout(tickTopics, 100);
+    };
+    if (axesDisplays.length || topicDisplays.length) tickTopics();
+
+    const tick = async () => {
+      try {
+        await pollTf();
+      } catch (error) {
+        note.textContent = String(error.message || error);
+      }
+      setTimeout(tick, PERIOD_MS);
+    };
+    setInterval(pollDescription, 1000);
+    await pollDescription();
+    tick();
+    const render = () => {
+      controls.update();
+      renderer.render(scene, camera);
+      state.renders += 1;
+      requestAnimationFrame(render);
+    };
+    render();
+    state.ready = true;
+  }
+  start().catch((error) => { note.textContent = `RViz could not start: ${error.message || error}`; });
+})();
