@@ -201,6 +201,23 @@ def test_no_package_imports_another_packages_internals():
     assert found == [], '\n'.join(found)
 
 
+# Ours on purpose: tutorial packages and the course's own; on apt Jazzy they overlay upstream's.
+OVERLAY_ON_PURPOSE = {'turtlesim', 'example_interfaces', 'my_robot_controller', 'node_runtime',
+                      'turtle_tf2_py', 'urdf_tutorial', 'urdf_tutorial_r2d2'}
+
+
+def test_every_package_is_either_a_stand_in_to_skip_on_apt_jazzy_or_ours():
+    # The README's apt-Jazzy build skips tools/apt_jazzy_skip.txt: a new stand-in for an
+    # upstream package that is missing there would shadow the real one.
+    listed = [line.strip() for line in (REPO / 'tools' / 'apt_jazzy_skip.txt').read_text()
+              .splitlines() if line.strip() and not line.startswith('#')]
+    packages = set(find_packages())
+    assert sorted(set(listed) - packages) == [], 'listed but not a package of src/'
+    unclassified = packages - set(listed) - OVERLAY_ON_PURPOSE
+    assert sorted(unclassified) == [], ('add to tools/apt_jazzy_skip.txt (stands in for an '
+                                        'upstream package) or to OVERLAY_ON_PURPOSE')
+
+
 def test_the_checker_sees_imports_inside_functions_and_scripts(tmp_path):
     # The checker itself: a lazy import in a function and a script without .py both count.
     packages = scan()
