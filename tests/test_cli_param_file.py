@@ -179,3 +179,25 @@ def test_load_and_delete_refuse_bad_input(module_ros_env, turtlesim, tmp_path):
     check(ros2(env, 'param', 'dump', '--spin-time', '1', '/nobody'), '', 'Node not found\n', 1)
     check(ros2(env, 'param', 'dump', '/turtlesim', '--output-dir', str(tmp_path / 'nowhere')),
           '', f"Output directory '{tmp_path / 'nowhere'}' does not exist\n", 1)
+
+
+STUCK_NODE = '''
+import time
+import rclpy
+rclpy.init()
+node = rclpy.create_node('stuck')
+print('created', flush=True)
+time.sleep(60)  # never spins: its parameter services are listed but never answer
+'''
+
+
+def test_param_verbs_give_up_on_a_node_that_never_answers(ros_env, launch):
+    import sys
+    stuck = launch(argv=[sys.executable, '-c', STUCK_NODE])
+    stuck.wait_for_output('created')
+    for verb in (['list', '/stuck'], ['get', '/stuck', 'use_sim_time'], ['dump', '/stuck']):
+        result = ros2(ros_env, 'param', *verb, timeout=40)
+        assert result.returncode == 1, verb
+        assert result.stderr.strip().splitlines()[-1].endswith(
+            's: the node is not spinning or is busy in a callback'), (verb, result.stderr)
+        assert "did not answer within 5 s" in result.stderr

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import time
 
 TYPE_NAMES = {
     0: 'not set', 1: 'boolean', 2: 'integer', 3: 'double', 4: 'string', 5: 'byte array',
@@ -39,13 +40,20 @@ def find_node(args: argparse.Namespace) -> str | None:
 
 
 def call(node, srv_type, service: str, request, timeout: float = 5.0):
+    """The node's answer; a node that is listed but never answers (not spinning, stuck in a
+    callback) fails after `timeout` s instead of hanging the command as ros2cli does."""
     from ros2cli_lite.api import CliError
     from ros2cli_lite.node import spin_once
     client = node.create_client(srv_type, service)
     if not client.wait_for_service(timeout_sec=timeout):
         raise CliError(f"Service '{service}' not available: the node has no parameter services")
     future = client.call_async(request)
+    deadline = time.monotonic() + timeout
     while not future.done():
+        if time.monotonic() > deadline:
+            client.remove_pending_request(future)
+            raise CliError(f"Service '{service}' did not answer within {timeout:g} s: the node "
+                           'is not spinning or is busy in a callback')
         spin_once(node, 0.1)
     if future.exception() is not None:
         raise CliError(f'Exception while calling service of node: {future.exception()}')
