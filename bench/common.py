@@ -18,8 +18,8 @@ sys.path.insert(0, str(REPO / 'tests'))
 
 from support import RosProcess, TestNode, executable, leased_domain, ros_environment  # noqa: E402
 
-__all__ = ['RESULTS', 'Row', 'Session', 'TestNode', 'cpu_seconds', 'percentile', 'session',
-           'verdict']
+__all__ = ['RESULTS', 'Row', 'Session', 'TestNode', 'cpu_seconds', 'executable', 'percentile',
+           'session', 'verdict']
 
 
 def percentile(samples: list[float], pct: float) -> float:

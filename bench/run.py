@@ -22,6 +22,7 @@ import roundtrip
 import rqt
 import scale
 import setup_time
+import startup
 from common import RESULTS, session
 
 SUITE = {
@@ -36,6 +37,7 @@ SUITE = {
     'bag': lambda s, quick: bag.run(s, turtles=50 if quick else bag.TURTLES),
     'bag_stop': lambda s, quick: bag_stop.run(s, runs=3 if quick else bag_stop.RUNS,
                                              turtles=50 if quick else bag_stop.TURTLES),
+    'startup': lambda s, quick: startup.run(s, runs=2 if quick else startup.RUNS),
 }
 
 
