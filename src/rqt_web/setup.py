@@ -6,7 +6,7 @@ package_name = 'rqt_web'
 # The upstream rqt package names the tutorials type (`ros2 run rqt_graph rqt_graph`): this
 # package registers each in the ament index and installs its lib/<name>/<name> launcher.
 TOOLS = ['rqt_gui', 'rqt_graph', 'rqt_console', 'rqt_service_caller', 'rqt_reconfigure',
-         'rqt_topic', 'rqt_action', 'rviz2']
+         'rqt_topic', 'rqt_action', 'rqt_tf_tree', 'rviz2']
 
 setup(
     name=package_name,

@@ -36,6 +36,7 @@ PAGES = {
     'console': ('/console', 'Console'),
     'actions': ('/actions', 'Actions'),
     'turtlesim': ('/turtlesim', 'Turtlesim'),
+    'tf_tree': ('/tf_tree', 'TF Tree'),
     'foxglove': ('/foxglove', 'Foxglove'),
     'rviz': ('/rviz', 'RViz'),
     'joint_state_publisher': ('/joint_state_publisher', 'Joint State Publisher'),

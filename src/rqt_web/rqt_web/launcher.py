@@ -15,7 +15,8 @@ import webbrowser
 from rqt_web import instance
 
 ALIASES = {'service_caller': 'services', 'reconfigure': 'parameters', 'params': 'parameters',
-           'topic': 'topics', 'action': 'actions', 'rqt_graph': 'graph'}
+           'topic': 'topics', 'action': 'actions', 'rqt_graph': 'graph',
+           'RosTfTree': 'tf_tree'}
 
 
 def parse_args(argv: list[str], page: str | None) -> argparse.Namespace:

@@ -18,7 +18,7 @@ from typing import Any
 from aiohttp import WSMsgType, web
 from node_runtime.discovery import announce_often
 
-from rqt_web import forms, instance, rviz, security
+from rqt_web import forms, instance, rviz, security, tf_feed
 from rqt_web.ros_bridge import RosBridge
 
 STATIC = Path(__file__).resolve().parent / 'static'
@@ -482,6 +482,7 @@ def make_app(token: str, bind_host: str, port_holder: dict) -> web.Application:
         web.post('/api/parameters/set', set_parameter), web.get('/ws', websocket),
         web.get('/static/{name}', static_file), web.get('/vendor/{name}', vendor_file),
         web.get('/{page}', page)])
+    tf_feed.add_routes(app)  # /api/tf/...: the TF Tree and RViz pages' data
     rviz.add_routes(app)  # /api/rviz/...: .rviz files, robot description, meshes
 
     async def start_ros(app: web.Application) -> None:

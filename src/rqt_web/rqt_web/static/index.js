@@ -10,6 +10,7 @@
     ['/console', 'Console', '/rosout with filters (rqt_console)'],
     ['/actions', 'Actions', 'send goals, see feedback and results'],
     ['/turtlesim', 'Turtlesim', 'the live canvas, keyboard teleop'],
+    ['/tf_tree', 'TF Tree', 'the tf2 frames, live, with rates and times (rqt_tf_tree)'],
     ['/foxglove', 'Foxglove', 'connect Foxglove or Lichtblick (foxglove_bridge)'],
     ['/rviz', 'RViz', 'the robot model and tf2 frames in 3D (rviz2)'],
     ['/joint_state_publisher', 'Joint State Publisher', 'a slider per movable joint (joint_state_publisher_gui)'],

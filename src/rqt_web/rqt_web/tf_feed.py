@@ -1,0 +1,130 @@
+"""tf for the web app's pages (TF Tree, RViz): one tf2_ros Buffer fed by /tf and /tf_static.
+
+The buffer and its TransformListener live on the bridge's node and are spun by the bridge's
+executor (no thread of their own). They are created when a page first asks, so a server
+that never shows tf never subscribes to it. Every call runs on the ROS thread
+(`RosBridge.run`), as the listener's callbacks do, so the buffer is never read mid-update.
+
+Python API (for server code; `feed = await tf_feed.get(app)`):
+
+- `await feed.frames()`: `{child: {'parent', 'broadcaster', 'rate', 'buffer_length',
+  'most_recent_transform', 'oldest_transform'}}`, tf2's `all_frames_as_yaml` parsed: what
+  view_frames and rqt_tf_tree draw on each edge (static frames: rate 10000, times 0).
+- `await feed.lookup(frame, fixed_frame)`: `frame`'s pose in `fixed_frame` at the latest
+  common time, `{'frame', 'fixed_frame', 'stamp', 'translation': [x, y, z],
+  'rotation': [x, y, z, w]}`, or `{'frame', 'fixed_frame', 'error': tf2's message}`.
+- `await feed.poses(fixed_frame)`: `lookup` of every known frame (and `fixed_frame`).
+- `await feed.clear()`: forget everything (rqt_tf_tree's "Clear buffer").
+
+HTTP (token-checked like every route): GET /api/tf/frames, GET /api/tf/lookup?frame=&
+fixed_frame=, GET /api/tf/poses?fixed_frame=, POST /api/tf/clear.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from typing import Any
+
+import yaml
+from aiohttp import web
+
+FRAME_FIELDS = ('parent', 'broadcaster', 'rate', 'buffer_length', 'most_recent_transform',
+                'oldest_transform')
+MAX_FRAME_ID = 256  # characters of a frame id a request may name
+
+
+class TfFeed:
+    def __init__(self, bridge: Any) -> None:
+        """Create the buffer and listener; call on the ROS thread (see `get`)."""
+        import tf2_ros
+        self.bridge = bridge
+        # No node= here: the server's node offers no services to the graph (tf2_frames).
+        self.buffer = tf2_ros.Buffer()
+        self.listener = tf2_ros.TransformListener(self.buffer, bridge.node, spin_thread=False)
+
+    # ------------------------------------------------------------ on the ROS thread
+    def _frames(self) -> dict[str, dict]:
+        data = yaml.safe_load(self.buffer.all_frames_as_yaml()) or {}
+        return {str(child): {field: info.get(field) for field in FRAME_FIELDS}
+                for child, info in data.items() if isinstance(info, dict)}
+
+    def _lookup(self, frame: str, fixed_frame: str) -> dict:
+        import rclpy.time
+        from tf2_ros import TransformException
+        try:
+            t = self.buffer.lookup_transform(fixed_frame, frame, rclpy.time.Time())
+        except TransformException as error:
+            return {'frame': frame, 'fixed_frame': fixed_frame, 'error': str(error)}
+        translation, rotation = t.transform.translation, t.transform.rotation
+        return {'frame': frame, 'fixed_frame': fixed_frame,
+                'stamp': t.header.stamp.sec + t.header.stamp.nanosec * 1e-9,
+                'translation': [translation.x, translation.y, translation.z],
+                'rotation': [rotation.x, rotation.y, rotation.z, rotation.w]}
+
+    def _poses(self, fixed_frame: str) -> dict[str, dict]:
+        frames = self._frames()
+        names = set(frames) | {info['parent'] for info in frames.values()} | {fixed_frame}
+        return {name: self._lookup(name, fixed_frame) for name in sorted(names)}
+
+    # ------------------------------------------------------------ from the event loop
+    async def frames(self) -> dict[str, dict]:
+        return await self.bridge.run(self._frames)
+
+    async def lookup(self, frame: str, fixed_frame: str) -> dict:
+        return await self.bridge.run(lambda: self._lookup(frame, fixed_frame))
+
+    async def poses(self, fixed_frame: str) -> dict[str, dict]:
+        return await self.bridge.run(lambda: self._poses(fixed_frame))
+
+    async def clear(self) -> None:
+        await self.bridge.run(self.buffer.clear)
+
+
+async def get(app: web.Application) -> TfFeed:
+    """The app's feed, created (and subscribed) on first use."""
+    lock = app.setdefault('tf_feed_lock', asyncio.Lock())
+    async with lock:
+        if 'tf_feed' not in app:
+            bridge = app['bridge']
+            app['tf_feed'] = await bridge.run(lambda: TfFeed(bridge))
+    return app['tf_feed']
+
+
+def _frame_id(request: web.Request, name: str, default: str | None = None) -> str:
+    value = request.query.get(name, default)
+    if not value or len(value) > MAX_FRAME_ID:
+        raise web.HTTPBadRequest(text=f'{name} must be a frame id of 1 to {MAX_FRAME_ID} '
+                                 f'characters, got {value!r}\n')
+    return value
+
+
+async def frames_route(request: web.Request) -> web.Response:
+    feed = await get(request.app)
+    return web.json_response({'frames': await feed.frames(), 'time': time.time()})
+
+
+async def lookup_route(request: web.Request) -> web.Response:
+    frame = _frame_id(request, 'frame')
+    fixed_frame = _frame_id(request, 'fixed_frame', 'world')
+    feed = await get(request.app)
+    return web.json_response(await feed.lookup(frame, fixed_frame))
+
+
+async def poses_route(request: web.Request) -> web.Response:
+    fixed_frame = _frame_id(request, 'fixed_frame', 'world')
+    feed = await get(request.app)
+    return web.json_response({'fixed_frame': fixed_frame, 'poses': await feed.poses(fixed_frame),
+                              'time': time.time()})
+
+
+async def clear_route(request: web.Request) -> web.Response:
+    feed = await get(request.app)
+    await feed.clear()
+    return web.json_response({'cleared': True})
+
+
+def add_routes(app: web.Application) -> None:
+    app.router.add_routes([
+        web.get('/api/tf/frames', frames_route), web.get('/api/tf/lookup', lookup_route),
+        web.get('/api/tf/poses', poses_route), web.post('/api/tf/clear', clear_route)])

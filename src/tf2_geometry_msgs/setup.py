@@ -1,0 +1,19 @@
+from setuptools import find_packages, setup
+
+package_name = 'tf2_geometry_msgs'
+
+setup(
+    name=package_name,
+    version='0.36.4',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+    ],
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='Turtlesim Team',
+    maintainer_email='team@turtles.example.com',
+    description='do_transform_* for geometry_msgs types, registered with tf2_ros.',
+    license='BSD-3-Clause',
+)
