@@ -23,6 +23,8 @@ import rqt
 import scale
 import setup_time
 import startup
+import tf2_lookup
+import turtle_tf2_cpu
 from common import RESULTS, session
 
 SUITE = {
@@ -38,6 +40,9 @@ SUITE = {
     'bag_stop': lambda s, quick: bag_stop.run(s, runs=3 if quick else bag_stop.RUNS,
                                              turtles=50 if quick else bag_stop.TURTLES),
     'startup': lambda s, quick: startup.run(s, runs=2 if quick else startup.RUNS),
+    'tf2': lambda s, quick: tf2_lookup.run(s, seconds=0.5 if quick else tf2_lookup.SECONDS),
+    'turtle_tf2_cpu': lambda s, quick: turtle_tf2_cpu.run(
+        s, duration=8.0 if quick else turtle_tf2_cpu.DURATION_S),
 }
 
 
