@@ -263,3 +263,13 @@ def wait_until(predicate: Callable[[], bool], timeout: float, what: str) -> None
         if time.monotonic() > deadline:
             raise AssertionError(f'timed out after {timeout} s waiting for {what}')
         time.sleep(0.02)
+
+
+def run_checked(args: list[str], cwd: Path, env: dict[str, str], timeout: float = 240.0
+                ) -> subprocess.CompletedProcess[str]:
+    """Run a command to completion (a tutorial step: `colcon build`, `ros2 pkg create`...);
+    fail the test with its output if it fails."""
+    result = subprocess.run(args, cwd=cwd, env=env, capture_output=True, text=True,
+                            timeout=timeout, stdin=subprocess.DEVNULL)
+    assert result.returncode == 0, f'{args} failed:\n{result.stdout}\n{result.stderr}'
+    return result

@@ -17,6 +17,8 @@ from pathlib import Path
 
 import pytest
 
+from support import run_checked as run
+
 CMAKE_INTERFACES = '''\
 find_package(geometry_msgs REQUIRED)
 find_package(rosidl_default_generators REQUIRED)
@@ -34,14 +36,6 @@ XML_INTERFACES = '''\
   <member_of_group>rosidl_interface_packages</member_of_group>
 
 '''
-
-
-def run(args: list[str], cwd: Path, env: dict[str, str], timeout: float = 240.0
-        ) -> subprocess.CompletedProcess[str]:
-    result = subprocess.run(args, cwd=cwd, env=env, capture_output=True, text=True,
-                            timeout=timeout, stdin=subprocess.DEVNULL)
-    assert result.returncode == 0, f'{args} failed:\n{result.stdout}\n{result.stderr}'
-    return result
 
 
 def sourced(workspace: Path, env: dict[str, str], command: str) -> list[str]:
