@@ -1,0 +1,27 @@
+"""`ros2 run demo_nodes_cpp parameter_blackboard`: a node that accepts any parameter, set at
+start-up (`-p name:=value`, a parameter file) or later (`ros2 param set`)."""
+import sys
+
+from node_runtime.spinning import ros_session, spin_until_stopped
+from rcl_interfaces.srv import ListParameters
+from rclpy.node import Node
+
+
+class ParameterBlackboard(Node):
+    def __init__(self) -> None:
+        super().__init__('parameter_blackboard', allow_undeclared_parameters=True,
+                         automatically_declare_parameters_from_overrides=True)
+        served = self.list_parameters([], ListParameters.Request.DEPTH_RECURSIVE).names
+        self.get_logger().info(
+            f"Parameter blackboard node named '{self.get_fully_qualified_name()}' ready, and "
+            f"serving '{len(served)}' parameters already!")
+
+
+def main() -> int:
+    with ros_session() as stop:
+        spin_until_stopped(ParameterBlackboard(), stop)
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
