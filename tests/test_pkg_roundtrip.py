@@ -147,3 +147,33 @@ def test_missing_linter_programs_are_reported_as_skipped(tmp_path, ros_env):
     hello = run(['bash', '-c', f'source {tmp_path}/install/setup.bash && ros2 run my_cpp my_node'],
                 tmp_path, ros_env, timeout=30)
     assert hello.stdout == 'hello world my_cpp package\n'
+
+
+def test_writing_basic_tests_with_python(tmp_path, ros_env):
+    """"Writing Basic Tests with Python" (Jazzy): the page's package layout, its failing
+    test_math in tests/, `colcon test --packages-select ... --pytest-args -k test_math` and
+    `colcon test-result --all --verbose` naming the failure."""
+    src = tmp_path / 'src'
+    src.mkdir()
+    run(['ros2', 'pkg', 'create', '--build-type', 'ament_python', '--license', 'Apache-2.0',
+         'awesome_ros_package'], src, ros_env)
+    package = src / 'awesome_ros_package'
+    (package / 'awesome_ros_package' / 'fozzie.py').write_text('"""Fozzie."""\n')
+    tests = package / 'tests'
+    tests.mkdir()
+    (tests / 'test_fozzie.py').write_text(
+        'def test_math():\n    assert 2 + 2 == 5   # This should fail for most mathematical '
+        'systems\n')
+    # The page's one setup.py requirement, which ros2 pkg create already writes.
+    assert "tests_require=['pytest']," in (package / 'setup.py').read_text()
+    run(['colcon', 'build'], tmp_path, ros_env)
+    run(['colcon', 'test', '--packages-select', 'awesome_ros_package', '--pytest-args', '-k',
+         'test_math'], tmp_path, ros_env)
+    results = subprocess.run(['colcon', 'test-result', '--all', '--verbose'], cwd=tmp_path,
+                             env=ros_env, capture_output=True, text=True, timeout=60)
+    assert results.returncode == 1
+    assert re.search(r'build/awesome_ros_package/pytest\.xml: 1 test, 0 errors, 1 failure',
+                     results.stdout), results.stdout
+    assert re.search(r'- awesome_ros_package\.tests\.test_fozzie test_math\n'
+                     r'  <<< failure message\n    assert \(2 \+ 2\) == 5', results.stdout), \
+        results.stdout
