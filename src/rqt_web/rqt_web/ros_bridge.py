@@ -32,6 +32,7 @@ from rqt_web.forms import interface_class
 
 NODE_NAME = '_rqt_web'
 GRAPH_PERIOD = 0.25  # seconds between graph polls while a page watches the graph
+PUBLISHER_MATCH_WAIT = 1.0  # seconds a new publisher waits to match the known subscriptions
 ROSOUT_KEEP = 5000  # log messages kept for pages opened later (rqt_console keeps 10000)
 CANVAS_TYPE = 'std_msgs/msg/UInt8MultiArray'
 # Reliable, volatile, keep-last unless said otherwise (QoSProfile's defaults).
@@ -190,11 +191,23 @@ class RosBridge:
         msg_class = interface_class(msg_type, 'msg')
         key = (topic, msg_type)
 
-        def publish() -> None:
-            if key not in self._publishers:
+        def publisher() -> tuple[Any, bool]:
+            fresh = key not in self._publishers
+            if fresh:
                 self._publishers[key] = self.node.create_publisher(msg_class, topic, 10)
-            self._publishers[key].publish(msg)
-        await self.run(publish)
+            return self._publishers[key], fresh
+
+        created, fresh = await self.run(publisher)
+        if fresh:
+            # A new publisher's first message is lost by every subscription it has not matched
+            # yet (volatile): wait, briefly, until it matched those the graph already shows.
+            deadline = time.monotonic() + PUBLISHER_MATCH_WAIT
+            while time.monotonic() < deadline:
+                known = await self.run(lambda: self.node.count_subscribers(topic))
+                if created.get_subscription_count() >= known:
+                    break
+                await asyncio.sleep(0.02)
+        await self.run(lambda: created.publish(msg))
 
     async def subscribe(self, topic: str, msg_type: str, callback: Callable[[Any], None],
                         raw: bool = False, qos: Any = 10) -> None:
