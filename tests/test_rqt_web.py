@@ -306,7 +306,8 @@ def test_actions_page_sends_a_goal_and_cancels_one(world: World) -> None:
     assert 'delta:' in page.inner_text('#result')
     assert 'remaining:' in page.inner_text('#feedback')
     screenshot(page, 'actions')
-    page.fill('input[name="theta"]', '-2.5')
+    # 3.1 rad from 2.5 the short way (-2.5 was only 1.3 rad): seconds in which to cancel.
+    page.fill('input[name="theta"]', '-0.6')
     page.click('#send-goal')
     page.wait_for_function('document.getElementById("goal-status").textContent'
                            '.includes("accepted")', timeout=10000)
