@@ -66,3 +66,51 @@ def test_rviz_page_draws_r2d2_where_tf2_puts_it(tmp_path: Path) -> None:
     blue = sum(1 for i in range(0, len(raw), 3)
                if raw[i + 2] > raw[i] + 15 and raw[i + 2] > raw[i + 1] + 15)
     assert blue > 500, f'only {blue} blue pixels: the robot is not drawn'
+
+
+def test_rviz_page_shows_the_turtle_frames_moving(tmp_path: Path) -> None:
+    """The tf2 introduction's rviz step: `rviz2 -d .../turtle_tf2_py/rviz/turtle_rviz.rviz`
+    with the turtle demo: turtle1 and turtle2 under world, turtle2 moving as it follows."""
+    reason = chromium_missing()
+    if reason:
+        pytest.skip(reason)
+    from ament_index_python.packages import get_package_share_directory
+    from playwright.sync_api import sync_playwright
+
+    config = Path(get_package_share_directory('turtle_tf2_py')) / 'rviz' / 'turtle_rviz.rviz'
+    with leased_domain() as domain:
+        env = ros_environment(domain)
+        server, _ = start_rqt(env, tmp_path / 'state')
+        demo = RosProcess(['ros2', 'launch', 'turtle_tf2_py', 'turtle_tf2_demo.launch.py'],
+                          server.env, tmp_path / 'demo.log')
+        try:
+            demo.wait_for_output(r'Successfully spawned turtle2', timeout=40)
+            with sync_playwright() as playwright:
+                browser = launch_browser(playwright)
+                try:
+                    page = browser.new_page(viewport={'width': 1280, 'height': 900})
+                    page.goto(server.page_url('/rviz', config=str(config)))
+                    page.wait_for_function(
+                        '() => window.rviz && window.rviz.ready && window.rviz.frames.turtle2'
+                        ' && !window.rviz.frames.turtle2.error', timeout=40000)
+                    first = page.evaluate('window.rviz.frames.turtle2.translation')
+                    page.wait_for_timeout(2000)
+                    state = page.evaluate('window.rviz')
+                    projected = page.evaluate('[window.rviz.project(0, 0, 0), window.rviz.project('
+                                              '...window.rviz.frames.turtle1.translation)]')
+                    screenshot(page, 'rviz_turtles')
+                finally:
+                    browser.close()
+        finally:
+            demo.stop()
+            server.stop()
+    assert state['fixedFrame'] == 'world'
+    assert state['status']['TF'] == 'OK', state['status']
+    turtle1 = state['frames']['turtle1']['translation']
+    assert turtle1[:2] == pytest.approx([5.544445, 5.544445], abs=0.01)
+    assert math.dist(first, state['frames']['turtle2']['translation']) > 0.1  # it drives
+    # The file's TopDownOrtho view (48.6 px/m around the origin): turtle1 drawn where rviz2
+    # draws it, 5.54 m right of and above the world origin.
+    origin, seen = projected
+    assert seen[0] - origin[0] == pytest.approx(5.544445 * 48.6, rel=0.05)
+    assert origin[1] - seen[1] == pytest.approx(5.544445 * 48.6, rel=0.05)

@@ -55,7 +55,8 @@ def read_rviz(path: str) -> dict:
     return {'path': path, 'fixed_frame': str(options.get('Fixed Frame', 'map')),
             'background': rgb, 'displays': [_display(d) for d in manager.get('Displays') or []
                                             if isinstance(d, dict)],
-            'view': {k: views.get(k) for k in ('Class', 'Distance', 'Pitch', 'Yaw')}}
+            'view': {k: views.get(k) for k in ('Class', 'Distance', 'Pitch', 'Yaw', 'Scale',
+                                                 'X', 'Y')}}
 
 
 def _display(d: dict) -> dict:

@@ -82,6 +82,14 @@
       distance * Math.sin(pitch));
     const controls = new OrbitControls(camera, renderer.domElement);
     controls.target.set(0, 0, 0);
+    if (String(v.Class || '').endsWith('TopDownOrtho')) {
+      // rviz's top-down view: Scale pixels per metre, centred on (X, Y). Seen from straight
+      // above at the height where the 45-degree field shows the same metres.
+      const scale = Number(v.Scale) || 10, x = Number(v.X) || 0, y = Number(v.Y) || 0;
+      const height = (view.clientHeight / scale / 2) / Math.tan(Math.PI / 8);
+      camera.position.set(x, y - 0.0001, height);
+      controls.target.set(x, y, 0);
+    }
     controls.update();
     document.getElementById('rviz-top').addEventListener('click', () => {
       camera.position.set(0, -0.0001, camera.position.length());
