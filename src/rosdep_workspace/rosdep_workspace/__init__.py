@@ -1,0 +1,1 @@
+"""rosdep for this workspace: PyPI's rosdep with local sources (see docs/rosdep.md)."""
