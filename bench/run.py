@@ -20,6 +20,7 @@ import launch_time
 import report
 import roundtrip
 import rqt
+import rviz
 import scale
 import setup_time
 import startup
@@ -40,6 +41,7 @@ SUITE = {
     'bag_stop': lambda s, quick: bag_stop.run(s, runs=3 if quick else bag_stop.RUNS,
                                              turtles=50 if quick else bag_stop.TURTLES),
     'startup': lambda s, quick: startup.run(s, runs=2 if quick else startup.RUNS),
+    'rviz': lambda s, quick: rviz.run(s, seconds=3.0 if quick else rviz.SECONDS),
     'tf2': lambda s, quick: tf2_lookup.run(s, seconds=0.5 if quick else tf2_lookup.SECONDS),
     'turtle_tf2_cpu': lambda s, quick: turtle_tf2_cpu.run(
         s, duration=8.0 if quick else turtle_tf2_cpu.DURATION_S),

@@ -1,0 +1,142 @@
+"""RViz page: frames per second and /joint_states-to-screen latency (issue 23's bars).
+
+    scripts/ws python bench/rviz.py [--seconds 10]      (or scripts/bench --only rviz)
+
+robot_state_publisher with the r2d2 URDF; a probe publishes /joint_states at 50 Hz, the head's
+swivel angle stepping by 0.01 rad each message, and 100 extra TF frames at 50 Hz. The RViz
+page (headless Chromium, fixed frame `axis`) records, on each animation frame, the head's yaw
+it draws; a message's latency is from its publication (wall clock) to the first frame drawn
+with its angle. Chromium renders without a GPU here (SwiftShader): the frame rate is the
+software renderer's.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+
+from common import Row, Session, percentile, session, verdict
+from rqt_browser import chromium_missing, launch_browser, start_rqt
+
+SECONDS = 10.0
+RATE_HZ = 50.0
+STEP = 0.01  # rad of swivel per message
+EXTRA_FRAMES = 100
+LATENCY_GOAL_MS = 100.0
+
+RECORDER = '''() => {
+  window.benchSeen = [];
+  let last = null;
+  const tick = () => {
+    const head = window.rviz && window.rviz.frames && window.rviz.frames.head;
+    if (head && !head.error) {
+      const [x, y, z, w] = head.rotation;
+      const yaw = Math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z));
+      if (yaw !== last) { window.benchSeen.push([Date.now(), yaw]); last = yaw; }
+    }
+    requestAnimationFrame(tick);
+  };
+  requestAnimationFrame(tick);
+}'''
+
+
+def run(current: Session, seconds: float = SECONDS) -> tuple[list[Row], dict]:
+    if chromium_missing():
+        return [Row('rviz', 'page', 'skipped', '', str(chromium_missing()))], {}
+    from ament_index_python.packages import get_package_share_directory
+    from playwright.sync_api import sync_playwright
+    from sensor_msgs.msg import JointState
+    from tf2_msgs.msg import TFMessage
+
+    share = get_package_share_directory('urdf_tutorial_r2d2')
+    urdf = open(f'{share}/r2d2.urdf.xml').read()
+    current.start_argv(['ros2', 'run', 'robot_state_publisher', 'robot_state_publisher',
+                        '--ros-args', '-p', f'robot_description:={urdf}'])
+    server, _ = start_rqt(current.env, current.log_dir / 'rqt-state')
+    probe = current.probe('rviz_bench')
+    joints = probe.node.create_publisher(JointState, '/joint_states', 10)
+    tf = probe.node.create_publisher(TFMessage, '/tf', 100)
+    sent: list[tuple[float, float]] = []
+    try:
+        with sync_playwright() as playwright:
+            browser = launch_browser(playwright)
+            page = browser.new_page(viewport={'width': 1280, 'height': 900})
+            page.goto(server.page_url('/rviz', config=f'{share}/r2d2.rviz', fixed_frame='axis'))
+            page.wait_for_function('() => window.rviz && window.rviz.ready', timeout=40000)
+            page.evaluate(RECORDER)
+            renders_before = page.evaluate('window.rviz.renders')
+            started = time.monotonic()
+            step = 0
+            while time.monotonic() - started < seconds:
+                step += 1
+                angle = math.remainder(step * STEP, 2 * math.pi)
+                stamp = probe.node.get_clock().now().to_msg()
+                joints.publish(JointState(header=_header(stamp), name=['tilt', 'swivel',
+                                          'periscope'], position=[0.0, angle, 0.0]))
+                sent.append((time.time(), angle))
+                tf.publish(TFMessage(transforms=[_frame(stamp, i, step) for i in
+                                                 range(EXTRA_FRAMES)]))
+                probe.spin_for(1.0 / RATE_HZ)
+            elapsed = time.monotonic() - started
+            page.wait_for_timeout(500)
+            renders = page.evaluate('window.rviz.renders') - renders_before
+            seen = page.evaluate('window.benchSeen')
+            browser.close()
+    finally:
+        probe.close()
+        server.stop()
+    latencies = _latencies(sent, seen)
+    fps = renders / elapsed
+    p50, p95 = percentile(latencies, 50), percentile(latencies, 95)
+    rows = [Row('rviz', 'frames per second (r2d2 + 100 TF frames at 50 Hz)', f'{fps:.1f}'),
+            Row('rviz', '/joint_states to the model drawn, p50', f'{p50:.0f} ms'),
+            Row('rviz', '/joint_states to the model drawn, p95', f'{p95:.0f} ms',
+                f'<= {LATENCY_GOAL_MS:.0f} ms', verdict(p95 <= LATENCY_GOAL_MS)),
+            Row('rviz', 'messages seen drawn', f'{len(latencies)} of {len(sent)}')]
+    return rows, {'rviz_fps': fps, 'rviz_latency_ms': latencies}
+
+
+def _header(stamp):
+    from std_msgs.msg import Header
+    return Header(stamp=stamp, frame_id='')
+
+
+def _frame(stamp, index: int, step: int):
+    from geometry_msgs.msg import TransformStamped
+    t = TransformStamped()
+    t.header.stamp = stamp
+    t.header.frame_id = 'axis'
+    t.child_frame_id = f'extra_{index}'
+    t.transform.translation.x = math.cos(index + step * 0.01) * 2.0
+    t.transform.translation.y = math.sin(index + step * 0.01) * 2.0
+    t.transform.rotation.w = 1.0
+    return t
+
+
+def _latencies(sent: list[tuple[float, float]], seen: list[list[float]]) -> list[float]:
+    """ms from each message to the first animation frame showing its angle (to 1e-4 rad)."""
+    out = []
+    for at, angle in sent:
+        for shown_ms, yaw in seen:
+            same = abs(math.remainder(yaw - angle, 2 * math.pi)) < 1e-4
+            if shown_ms / 1000 >= at - 0.005 and same:
+                out.append(max(0.0, shown_ms - at * 1000))
+                break
+    return out
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument('--seconds', type=float, default=SECONDS)
+    options = parser.parse_args()
+    if not 1.0 <= options.seconds <= 600.0:
+        parser.error('--seconds must be between 1 and 600')
+    with session('rviz') as current:
+        rows, _ = run(current, options.seconds)
+    for row in rows:
+        print(f'{row.metric}: {row.value} {row.target} {row.verdict}'.rstrip())
+
+
+if __name__ == '__main__':
+    main()
