@@ -1,6 +1,7 @@
 """launch_testing, launch_testing_ros and launch_testing_ament_cmake with upstream's API.
 
-The example launch tests in tests/data/launch_testing run through the `launch_test` command,
+The example launch tests in tests/data/launch_testing (named example_*.py, so that pytest
+itself does not collect them) run through the `launch_test` command,
 then as `colcon test` runs them: in an ament_python package (the pytest plugin) and in an
 ament_cmake package (add_launch_test), each with a test that must fail; colcon test-result
 names the failing test file and line.
@@ -23,38 +24,38 @@ def launch_test(env: dict[str, str], name: str) -> subprocess.CompletedProcess[s
 
 
 def test_launch_test_command(ros_env) -> None:
-    passing = launch_test(ros_env, 'talker_launch_test.py')
+    passing = launch_test(ros_env, 'example_talker_launch.py')
     assert passing.returncode == 0, passing.stderr
     assert passing.stderr.endswith(
-        'test_talks (talker_launch_test.TestTalker) ... ok\n'
-        'test_exit_code (talker_launch_test.TestTalkerShutdown) ... ok\n\n' + '-' * 70 + '\n'
+        'test_talks (example_talker_launch.TestTalker) ... ok\n'
+        'test_exit_code (example_talker_launch.TestTalkerShutdown) ... ok\n\n' + '-' * 70 + '\n'
         'Ran 2 tests in ' + passing.stderr.split('Ran 2 tests in ')[1].split('s\n')[0]
         + 's\n\nOK\n'), passing.stderr
     assert '[python-1] Hello World: 2' in passing.stdout + passing.stderr
 
-    exit_code = launch_test(ros_env, 'failing_exit_launch_test.py')
+    exit_code = launch_test(ros_env, 'example_failing_exit_launch.py')
     assert exit_code.returncode == 1
     assert re.search(
-        r'FAIL: test_exit_code \(failing_exit_launch_test\.TestExitCodes\.test_exit_code\)\n'
+        r'FAIL: test_exit_code \(example_failing_exit_launch\.TestExitCodes\.test_exit_code\)\n'
         r'-+\nTraceback \(most recent call last\):\n'
-        r'  File ".*/failing_exit_launch_test\.py", line \d+, in test_exit_code\n'
+        r'  File ".*/example_failing_exit_launch\.py", line \d+, in test_exit_code\n'
         r'    launch_testing\.asserts\.assertExitCodes\(proc_info\)\n'
         r'AssertionError: Proc python-1 exited with code 3 \(allowed: 0; cmd: ',
         exit_code.stderr), exit_code.stderr
 
-    timed_out = launch_test(ros_env, 'failing_wait_launch_test.py')
+    timed_out = launch_test(ros_env, 'example_failing_wait_launch.py')
     assert timed_out.returncode == 1
     assert re.search(
-        r'  File ".*/failing_wait_launch_test\.py", line \d+, in test_says_goodbye\n.*\n'
+        r'  File ".*/example_failing_wait_launch\.py", line \d+, in test_says_goodbye\n.*\n'
         r"AssertionError: Waiting for output timed out\n  expected 'Goodbye' on stdout of any "
         r'process within 2 s\n  last stdout of python-1:\n    Hello World: 0\n'
         r'    Hello World: 1\n', timed_out.stderr), timed_out.stderr
 
 
 def test_ros_launch_test_with_wait_for_topics(ros_env) -> None:
-    turtlesim = launch_test(ros_env, 'turtlesim_launch_test.py')
+    turtlesim = launch_test(ros_env, 'example_turtlesim_launch.py')
     assert turtlesim.returncode == 0, turtlesim.stdout + turtlesim.stderr
-    assert 'test_pose_is_published (turtlesim_launch_test.TestTurtlesim) ... ok' in \
+    assert 'test_pose_is_published (example_turtlesim_launch.TestTurtlesim) ... ok' in \
         turtlesim.stderr
 
 
@@ -67,12 +68,15 @@ def test_colcon_test_runs_launch_tests_and_reports_failures(tmp_path, ros_env) -
                  'Apache-2.0', 'launch_demo_cmake'], src, ros_env)
     python_tests = src / 'launch_demo_py' / 'test'
     shutil.copy(EXAMPLES / 'talker.py', python_tests)
-    shutil.copy(EXAMPLES / 'talker_launch_test.py', python_tests / 'test_talker_launch.py')
-    shutil.copy(EXAMPLES / 'failing_wait_launch_test.py', python_tests / 'test_goodbye_launch.py')
+    shutil.copy(EXAMPLES / 'example_talker_launch.py', python_tests / 'test_talker_launch.py')
+    shutil.copy(EXAMPLES / 'example_failing_wait_launch.py',
+                python_tests / 'test_goodbye_launch.py')
     cmake_package = src / 'launch_demo_cmake'
     (cmake_package / 'test').mkdir()
-    for name in ('talker.py', 'talker_launch_test.py', 'failing_exit_launch_test.py'):
-        shutil.copy(EXAMPLES / name, cmake_package / 'test')
+    shutil.copy(EXAMPLES / 'talker.py', cmake_package / 'test')
+    for example, name in (('example_talker_launch.py', 'talker_launch_test.py'),
+                          ('example_failing_exit_launch.py', 'failing_exit_launch_test.py')):
+        shutil.copy(EXAMPLES / example, cmake_package / 'test' / name)
     cmake = (cmake_package / 'CMakeLists.txt').read_text()
     (cmake_package / 'CMakeLists.txt').write_text(cmake.replace(
         'if(BUILD_TESTING)\n', 'if(BUILD_TESTING)\n'
