@@ -14,6 +14,7 @@
   const sliders = {};
   window.jsp = {sliders, published: 0};
   let count = -1;
+  let touched = false;  // the user moved a slider: from then on the page owns the positions
 
   const publish = async () => {
     const names = Object.keys(sliders);
@@ -42,7 +43,7 @@
       const value = rqt.el('span', {class: 'value', text: zero.toFixed(2)});
       const input = rqt.el('input', {type: 'range', min: lower, max: upper, step: (upper - lower) / 1000,
         value: zero, 'data-joint': name});
-      input.addEventListener('input', () => { value.textContent = Number(input.value).toFixed(2); publish(); });
+      input.addEventListener('input', () => { value.textContent = Number(input.value).toFixed(2); touched = true; publish(); });
       sliders[name] = {input, value, lower, upper, zero};
       table.append(rqt.el('tr', {}, rqt.el('td', {text: name}), rqt.el('td', {}, input), rqt.el('td', {}, value)));
     }
@@ -53,8 +54,12 @@
       s.input.value = pick(s);
       s.value.textContent = Number(s.input.value).toFixed(2);
     }
+    touched = true;
     publish();
   };
+  // Once a second again: a message sent before the node's subscription was discovered is
+  // lost (volatile topic); the positions the sliders show then still reach the node.
+  setInterval(() => { if (touched) publish(); }, 1000);
   randomize.addEventListener('click', () => setAll((s) => s.lower + Math.random() * (s.upper - s.lower)));
   center.addEventListener('click', () => setAll((s) => s.zero));
   const poll = async () => {
