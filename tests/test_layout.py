@@ -15,6 +15,7 @@ docs/architecture.md.
 from __future__ import annotations
 
 import ast
+import re
 import sys
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
@@ -228,6 +229,16 @@ def test_the_checker_sees_imports_inside_functions_and_scripts(tmp_path):
     probe.write_text('def f():\n    import os.path\n'
                      '    importlib.import_module("json.decoder")\n')
     assert [name for name, _ in imported_names(probe)] == ['os', 'json']
+
+
+def test_the_architecture_drawing_has_exactly_the_imports_of_the_code():
+    # Solid arrows in docs/architecture.md are imports (`A --> B`); dotted ones are entry-point
+    # plugins, which no import shows.
+    drawing = (REPO / 'docs' / 'architecture.md').read_text().split('```mermaid\n')[1]
+    drawn = set(re.findall(r'^ *(\w+) --> (\w+)$', drawing.split('```')[0], re.MULTILINE))
+    imported = {(name, target) for name, package in scan().items() for target in package.imports}
+    assert (sorted(imported - drawn), sorted(drawn - imported)) == ([], []), (
+        '(not drawn, drawn but not imported): redraw with python tests/test_layout.py --mermaid')
 
 
 def mermaid(packages: dict[str, Package]) -> str:

@@ -16,6 +16,9 @@ from upstream's sources (facts only):
   time source subscribes to /parameter_events; rclcpp and rclpy nodes both declare use_sim_time
   and start_type_description_service, publish /parameter_events and /rosout and serve the six
   parameter services plus get_type_description.
+- ros2/demos demo_nodes_cpp parameter_blackboard.cpp: an rclcpp node that allows undeclared
+  parameters, declares those it is given, and logs how many it serves (list_parameters,
+  recursive) once constructed.
 - ros2/demos demo_nodes_py add_two_ints_server/add_two_ints_client (rclpy; the course's
   my_robot_controller nodes carry these node names): /add_two_ints server and client, no
   parameters of their own.
@@ -105,6 +108,7 @@ MIMIC = Upstream('turtle_mimic', subscribers=[('/input/pose', POSE)],
 DRAW_SQUARE = Upstream('draw_square', subscribers=[('/turtle1/pose', POSE)],
                        publishers=[('/turtle1/cmd_vel', TWIST)],
                        clients=[('/reset', 'std_srvs/srv/Empty')])
+PARAMETER_BLACKBOARD = Upstream('parameter_blackboard')
 ADD_TWO_INTS = ('/add_two_ints', 'example_interfaces/srv/AddTwoInts')
 ADD_SERVER = Upstream('add_two_ints_server', services=[ADD_TWO_INTS], rclcpp=False)
 ADD_CLIENT = Upstream('add_two_ints_client', clients=[ADD_TWO_INTS], rclcpp=False)
@@ -172,6 +176,15 @@ def test_teleop_is_upstreams(module_ros_env, module_turtlesim, teleop):
 def test_mimic_is_upstreams(module_ros_env, module_launch):
     module_launch('turtlesim', 'mimic')
     assert_like_upstream(module_ros_env, MIMIC)
+
+
+def test_parameter_blackboard_is_demo_nodes_cpps(module_ros_env, module_launch):
+    blackboard = module_launch('demo_nodes_cpp', 'parameter_blackboard')
+    # rclcpp has declared its six parameters by the time the constructor logs.
+    blackboard.wait_for_output(r"^\[INFO\] \[[\d.]+\] \[parameter_blackboard\]: Parameter "
+                               r"blackboard node named '/parameter_blackboard' ready, and serving "
+                               f"'{len(PARAMETER_BLACKBOARD.parameters)}' parameters already!$")
+    assert_like_upstream(module_ros_env, PARAMETER_BLACKBOARD)
 
 
 def test_add_two_ints_server_is_demo_nodes_pys(module_ros_env, module_launch):

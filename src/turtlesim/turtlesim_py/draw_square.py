@@ -7,12 +7,12 @@ import sys
 from enum import Enum
 
 from geometry_msgs.msg import Twist
+from node_runtime.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
 from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.node import Node
 from std_srvs.srv import Empty
 from turtlesim.msg import Pose
 
-from turtlesim_py.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
 from turtlesim_py.turtle import TOPIC_QOS
 
 PI = 3.141592

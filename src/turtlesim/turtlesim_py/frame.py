@@ -12,6 +12,7 @@ from array import array
 from pathlib import Path
 
 from node_runtime.parameter_guard import guard_parameter_services
+from node_runtime.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
 from node_runtime.repeat_log import RepeatedLog
 from rcl_interfaces.msg import (
     IntegerRange,
@@ -34,7 +35,6 @@ from turtlesim.srv import Kill, Spawn
 from turtlesim_py import sim
 from turtlesim_py.canvas import Canvas
 from turtlesim_py.canvas_stream import CanvasStream
-from turtlesim_py.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
 from turtlesim_py.turtle import Turtle
 
 BACKGROUND = (('background_r', 69, 'Red channel of the background color'),

@@ -5,11 +5,11 @@ from __future__ import annotations
 import sys
 
 from geometry_msgs.msg import Twist
+from node_runtime.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
 from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.node import Node
 from turtlesim.msg import Pose
 
-from turtlesim_py.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
 from turtlesim_py.turtle import TOPIC_QOS
 
 

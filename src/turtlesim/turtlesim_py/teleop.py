@@ -11,13 +11,13 @@ from dataclasses import dataclass
 
 import rclpy
 from geometry_msgs.msg import Twist
+from node_runtime.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
 from rclpy.action import ActionClient
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
 from turtlesim.action import RotateAbsolute
 
-from turtlesim_py.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
 from turtlesim_py.turtle import TOPIC_QOS
 
 INSTRUCTIONS = (

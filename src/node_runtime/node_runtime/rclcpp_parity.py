@@ -1,10 +1,11 @@
-"""What the C++ turtlesim nodes show the graph because rclcpp made them, added to rclpy nodes.
+"""What C++ (rclcpp) nodes show the graph because rclcpp made them, added to rclpy stand-ins.
 
 Every rclcpp node declares read-only `qos_overrides./parameter_events.publisher.*` parameters
 (the QoS of its /parameter_events publisher) and subscribes to /parameter_events; rclpy
 nodes do neither. The tutorials' `ros2 param list`, `param dump`, `param load` and `ros2 node
-info` listings show them, so our turtlesim and teleop declare them too, with rclcpp's values
-and rclcpp's refusal text for a read-only parameter.
+info` listings show them, so the stand-ins for rclcpp nodes (turtlesim, teleop, mimic,
+draw_square, demo_nodes_cpp's parameter_blackboard) declare them too, with rclcpp's values and
+rclcpp's refusal text for a read-only parameter.
 """
 
 from __future__ import annotations
@@ -42,6 +43,8 @@ def declare_rclcpp_parameters(node: Node, subscribe_parameter_events: bool = Tru
     """Declare the qos_overrides parameters (a params file may set them at start-up, as in
     rclcpp) and, unless the node has its own, a /parameter_events subscription."""
     for name, default in PARAMETER_EVENT_QOS_VALUES:
+        if node.has_parameter(PREFIX + name):
+            continue  # declared from an override (automatically_declare_parameters_from_overrides)
         descriptor = ParameterDescriptor(read_only=True)
         try:
             node.declare_parameter(PREFIX + name, default, descriptor)
