@@ -88,3 +88,44 @@ def test_tf2_monitor_reports_the_chain(launch) -> None:
                             r'Frame: cam, published by <no authority available>, '
                             r'Average Delay: [-\de.+]+, Max Delay: [-\de.+]+\n', timeout=30)
     assert monitor.stop() == 0
+
+
+def test_bad_transforms_on_tf_are_refused_and_the_listener_goes_on(launch, probe) -> None:
+    """NaN, a non-unit quaternion, a self-transform and a missing child id, sent on /tf to a
+    running tf2_echo: one error line each in tf2's words, then a good transform is echoed."""
+    from geometry_msgs.msg import TransformStamped
+    from tf2_msgs.msg import TFMessage
+
+    echo = launch(argv=['ros2', 'run', 'tf2_ros', 'tf2_echo', 'world', 'robot'])
+    publisher = probe.node.create_publisher(TFMessage, '/tf', 100)
+    probe.spin_until(lambda: publisher.get_subscription_count() >= 1, 20, 'the echo on /tf')
+
+    def transform(parent: str, child: str, x: float = 1.0, qw: float = 1.0) -> TransformStamped:
+        t = TransformStamped()
+        t.header.stamp = probe.node.get_clock().now().to_msg()
+        t.header.frame_id, t.child_frame_id = parent, child
+        t.transform.translation.x, t.transform.rotation.w = x, qw
+        return t
+
+    publisher.publish(TFMessage(transforms=[
+        transform('world', 'robot', x=float('nan')), transform('world', 'robot', qw=2.0),
+        transform('world', 'world'), transform('world', '')]))
+    for pattern in (r'TF_NAN_INPUT: Ignoring transform for child_frame_id "robot" from '
+                    r'authority "[^"]*" because of a nan value in the transform \(nan 0\.000000 '
+                    r'0\.000000\) \(0\.000000 0\.000000 0\.000000 1\.000000\)',
+                    r'TF_DENORMALIZED_QUATERNION: Ignoring transform for child_frame_id "robot" '
+                    r'from authority "[^"]*" because of an invalid quaternion in the transform '
+                    r'\(0\.000000 0\.000000 0\.000000 2\.000000\)',
+                    r'TF_SELF_TRANSFORM: Ignoring transform from authority "[^"]*" with '
+                    r'frame_id and  child_frame_id "world" because they are the same',
+                    r'TF_NO_CHILD_FRAME_ID: Ignoring transform from authority "[^"]*" because '
+                    r'child_frame_id not set'):
+        echo.wait_for_output(r'^\[ERROR\] \[[\d.]+\] \[\]: ' + pattern, timeout=20)
+    deadline = time.monotonic() + 20
+    while 'Translation: [1.000, 0.000, 0.000]' not in echo.output:
+        assert time.monotonic() < deadline, echo.output
+        publisher.publish(TFMessage(transforms=[transform('world', 'robot')]))
+        probe.spin_for(0.2)
+    assert 'nan' not in echo.output.split('At time')[-1]
+    assert echo.stop() == 0
+    assert 'Traceback' not in echo.output
