@@ -5,7 +5,10 @@ As upstream (ros/robot_state_publisher, Jazzy): node `robot_state_publisher`, pa
 `/robot_description` is latched (transient local, depth 1); fixed (and planar) joints go to
 /tf_static once per description; moving joints go to /tf for each /joint_states message
 (sensor-data QoS) with the message's stamp, at most `publish_frequency` times a second per
-joint unless `ignore_timestamp`. Mimic joints follow their joint. Floating joints are skipped.
+joint unless `ignore_timestamp`. Mimic joints follow their joint. Floating joints are skipped
+(kdl_parser's "Converting unknown joint type" warning is logged for planar and floating joints).
+A mesh file that is not on this machine is one warning line naming the link (upstream does not
+look at meshes); the description is still used.
 
 On purpose unlike upstream: a bad or empty description does not end the node; it logs one
 line naming the element and waits for a valid `robot_description` (set with `ros2 param set`).
@@ -30,7 +33,13 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import String
 from tf2_ros import StaticTransformBroadcaster, TransformBroadcaster
 
-from robot_state_publisher.urdf_model import Joint, RobotModel, UrdfError, parse
+from robot_state_publisher.urdf_model import (
+    Joint,
+    RobotModel,
+    UrdfError,
+    missing_meshes,
+    parse,
+)
 
 FREQUENCY_RANGE = (0.0, 1000.0)
 
@@ -86,9 +95,15 @@ class RobotStatePublisher(Node):
             return False
         self.model, self.moving, self.last_publish = model, model.moving(), {}
         for joint in model.joints:
-            if joint.type == 'planar':
+            if joint.type in ('planar', 'floating'):  # kdl_parser's warning, for both
                 self.get_logger().warn(f"Converting unknown joint type of joint "
                                        f"'{joint.name}' into a fixed joint")
+            if joint.type == 'floating':
+                self.get_logger().debug(
+                    f'Floating joint is not supported; skipping segment from {joint.parent} '
+                    f'to {joint.child}.')
+        for line in missing_meshes(model):  # upstream does not look; rviz2 would fail later
+            self.get_logger().warn(line)
         self.description_pub.publish(String(data=description))
         self.publish_fixed_transforms()
         self.get_logger().info('Robot initialized')

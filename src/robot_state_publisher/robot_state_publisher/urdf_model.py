@@ -17,6 +17,7 @@ Vector = tuple[float, float, float]
 Quaternion = tuple[float, float, float, float]  # x, y, z, w
 
 MOVING_TYPES = ('revolute', 'continuous', 'prismatic')
+JOINT_TYPES = ('revolute', 'continuous', 'prismatic', 'fixed', 'floating', 'planar')
 
 
 class UrdfError(ValueError):
@@ -60,6 +61,7 @@ class RobotModel:
     root: str
     links: tuple[str, ...]
     joints: tuple[Joint, ...]  # in tree order, parents before children
+    meshes: tuple[tuple[str, str], ...] = ()  # (link, filename) of each visual/collision mesh
 
     def moving(self) -> dict[str, Joint]:
         return {j.name: j for j in self.joints if j.type in MOVING_TYPES}
@@ -104,13 +106,78 @@ def parse(xml: str) -> RobotModel:
         raise UrdfError('robot_description parameter must not be empty')
     from lxml import etree
     from urdf_parser_py import urdf
+    data = xml.encode() if isinstance(xml, str) else xml
     try:
-        robot = urdf.URDF.from_xml_string(xml.encode() if isinstance(xml, str) else xml)
+        _check_joint_types(etree.fromstring(data))
+        robot = urdf.URDF.from_xml_string(data)
     except etree.XMLSyntaxError as error:
-        raise UrdfError(f'robot description is not valid XML: {_one_line(error)}') from None
+        where = _one_line(error).replace(' (<string>, line 1)', '')
+        raise UrdfError(f'robot description is not valid XML: {where}') from None
+    except UrdfError:
+        raise
     except Exception as error:  # urdf_parser_py raises ParseError, AssertionError, ...
         raise UrdfError(f'robot description is not a valid URDF: {_one_line(error)}') from None
     return _build(robot)
+
+
+def _check_joint_types(root) -> None:
+    """urdfdom's wording for a joint without a type or of an unknown one (urdf_parser_py's
+    is a ParseError with an XPath)."""
+    for element in root.iter('joint'):
+        if element.getparent() is not root:  # <joint> inside <transmission> is a reference
+            continue
+        name, kind = element.get('name'), element.get('type')
+        if kind is None:
+            raise UrdfError(f"joint [{name}] has no type, check to see if it's a reference.")
+        if kind not in JOINT_TYPES:
+            raise UrdfError(f'Joint [{name}] has no known type [{kind}] '
+                            f'(allowed: {", ".join(JOINT_TYPES)})')
+
+
+def _meshes(robot) -> tuple[tuple[str, str], ...]:
+    found = []
+    for link in robot.links:
+        for element in [*link.visuals, *link.collisions]:
+            geometry = getattr(element, 'geometry', None)
+            filename = getattr(geometry, 'filename', None)
+            if filename and (link.name, filename) not in found:
+                found.append((link.name, filename))
+    return tuple(found)
+
+
+def mesh_path(uri: str) -> str | None:
+    """Local path of a mesh `filename` (package://, file:// or a plain path), or None if
+    the package is unknown or the scheme is not a local one."""
+    if uri.startswith('package://'):
+        package, _, relative = uri[len('package://'):].partition('/')
+        from ament_index_python.packages import (
+            PackageNotFoundError,
+            get_package_share_directory,
+        )
+        try:
+            return f'{get_package_share_directory(package)}/{relative}'
+        except PackageNotFoundError:
+            return None
+    if uri.startswith('file://'):
+        return uri[len('file://'):]
+    if '://' in uri:
+        return None
+    return uri
+
+
+def missing_meshes(model: RobotModel) -> list[str]:
+    """One line per mesh file of the model that is not on this machine."""
+    import os
+    lines = []
+    for link, uri in model.meshes:
+        path = mesh_path(uri)
+        if path is None and uri.startswith('package://'):
+            package = uri[len('package://'):].partition('/')[0]
+            lines.append(f"link '{link}': mesh [{uri}] not found: package [{package}] "
+                         'not found')
+        elif path is not None and not os.path.isfile(path):
+            lines.append(f"link '{link}': mesh [{uri}] not found: no file {path}")
+    return lines
 
 
 def _build(robot) -> RobotModel:
@@ -128,9 +195,9 @@ def _build(robot) -> RobotModel:
         where = f"joint '{j.name}'"
         if j.name in joints:
             raise UrdfError(f'{where} is not unique')
-        for role, link in (('parent', j.parent), ('child', j.child)):
-            if link not in seen:
-                raise UrdfError(f'{where}: {role} link [{link}] not found')
+        for role, link in (('child', j.child), ('parent', j.parent)):
+            if link not in seen:  # urdfdom's wording
+                raise UrdfError(f'{role} link [{link}] of joint [{j.name}] not found')
         if j.child in parent_of:
             raise UrdfError(f'{where}: child link [{j.child}] already has a parent '
                             f'(joint \'{parent_of[j.child]}\')')
@@ -138,9 +205,9 @@ def _build(robot) -> RobotModel:
         joints[j.name] = _joint(j, where)
     roots = [name for name in links if name not in parent_of]
     if not roots:
-        raise UrdfError('no root link found: the joints form a loop')
+        raise UrdfError('No root link found. The robot xml is not a valid tree.')
     if len(roots) > 1:
-        raise UrdfError(f'two root links found: [{roots[0]}] and [{roots[1]}]')
+        raise UrdfError(f'Two root links found: [{roots[0]}] and [{roots[1]}]')
     children: dict[str, list[Joint]] = {}
     for joint in joints.values():
         children.setdefault(joint.parent, []).append(joint)
@@ -158,7 +225,7 @@ def _build(robot) -> RobotModel:
         if joint.mimic and joint.mimic.joint not in joints:
             raise UrdfError(f"joint '{joint.name}': mimic joint [{joint.mimic.joint}] "
                             'not found')
-    return RobotModel(robot.name, roots[0], tuple(links), tuple(ordered))
+    return RobotModel(robot.name, roots[0], tuple(links), tuple(ordered), _meshes(robot))
 
 
 def _joint(j, where: str) -> Joint:
