@@ -15,10 +15,20 @@ TF comes from `tf_feed` (one tf2_ros Buffer for the whole app). Here:
   PoseArray, Path, Odometry and LaserScan displays), null before the first.
 - GET /api/rviz/resource?uri=package://PKG/PATH or file:///PATH: a mesh or texture file
   (.stl .dae .obj .mtl .png .jpg), package:// resolved through the ament index.
+- GET /api/rviz/cloud?topic=T&after=N and /api/rviz/image?topic=T&after=N (PointCloud2 and
+  Image displays): the latest message newer than the page's N, waited for up to 1 s (204 No
+  Content if none came), as binary made once per message with numpy: a cloud's finite
+  points as float32 x, y, z then, if coloured, uint8 r, g, b per point; an image as RGBA
+  bytes. The `X-Rviz` header gives JSON: seq, frame, points or width/height, colour.
+- POST /api/rviz/tool {tool: initialpose|goal|point, topic, frame, x, y, z, yaw}: what the
+  tool belt's 2D Pose Estimate, 2D Goal Pose and Publish Point publish, stamped now.
 """
 
 from __future__ import annotations
 
+import asyncio
+import json
+import math
 import os
 import time
 from pathlib import Path
@@ -52,17 +62,22 @@ def read_rviz(path: str) -> dict:
     except ValueError:
         rgb = [48, 48, 48]
     views = ((manager.get('Views') or {}).get('Current') or {})
-    return {'path': path, 'fixed_frame': str(options.get('Fixed Frame', 'map')),
+    tools = [{'class': str(t.get('Class', '')), 'topic': _topic(t)}
+             for t in manager.get('Tools') or [] if isinstance(t, dict)]
+    return {'tools': tools, 'path': path, 'fixed_frame': str(options.get('Fixed Frame', 'map')),
             'background': rgb, 'displays': [_display(d) for d in manager.get('Displays') or []
                                             if isinstance(d, dict)],
             'view': {k: views.get(k) for k in ('Class', 'Distance', 'Pitch', 'Yaw', 'Scale',
                                                  'X', 'Y')}}
 
 
-def _display(d: dict) -> dict:
+def _topic(d: dict) -> Any:
     topic = d.get('Topic')
-    if isinstance(topic, dict):
-        topic = topic.get('Value')
+    return topic.get('Value') if isinstance(topic, dict) else topic
+
+
+def _display(d: dict) -> dict:
+    topic = _topic(d)
     description = d.get('Description Topic')
     if isinstance(description, dict):
         topic = description.get('Value', topic)
@@ -99,6 +114,7 @@ class MarkerFeed:
     def __init__(self, bridge: Any) -> None:
         self.bridge = bridge
         self.markers: dict[str, dict[tuple[str, int], dict]] = {}
+        self.version = 0  # grows with every marker received: the page re-places it then
 
     def subscribe(self, topic: str, kind: str) -> None:
         if topic in self.markers:
@@ -114,6 +130,7 @@ class MarkerFeed:
 
     def apply(self, topic: str, m: Any) -> None:
         alive = self.markers[topic]
+        self.version += 1
         if m.action == 3:  # DELETEALL
             alive.clear()
         elif m.action == 2:  # DELETE
@@ -128,7 +145,8 @@ class MarkerFeed:
                 'color': [m.color.r, m.color.g, m.color.b, m.color.a],
                 'points': [[v.x, v.y, v.z] for v in m.points],
                 'colors': [[c.r, c.g, c.b, c.a] for c in m.colors], 'text': m.text,
-                'mesh': m.mesh_resource,
+                'mesh': m.mesh_resource, 'embedded': m.mesh_use_embedded_materials,
+                'frame_locked': m.frame_locked, 'version': self.version,
                 'expires': time.monotonic() + lifetime if lifetime > 0 else None}
 
     def alive(self, topic: str) -> list[dict]:
@@ -175,6 +193,243 @@ async def latest_route(request: web.Request) -> web.Response:
     msg = latest[(topic, kind)]
     return web.json_response({'topic': topic, 'msg': None if msg is None
                               else message_to_ordered_value(msg)})
+
+
+# ------------------------------------------------------------------ PointCloud2 and Image
+# PointField datatypes (sensor_msgs/msg/PointField) as numpy type codes.
+POINT_FIELD_TYPES = {1: 'i1', 2: 'u1', 3: 'i2', 4: 'u2', 5: 'i4', 6: 'u4', 7: 'f4', 8: 'f8'}
+STREAM_WAIT = 1.0  # seconds a page's request waits for a newer message
+
+
+def _rainbow(value: Any) -> Any:
+    """rviz's getRainbowColor (HSV hue 0 to 0.83) of values in [0, 1]: uint8 (n, 3)."""
+    import numpy as np
+    h = np.clip(value, 0.0, 1.0) * 5.0 + 1.0
+    i = np.floor(h)
+    f = h - i
+    f = np.where(i % 2 == 0, 1.0 - f, f)
+    n = 1.0 - f
+    zero, one = np.zeros_like(h), np.ones_like(h)
+    r = np.select([i <= 1, i == 2, i == 3, i == 4], [n, zero, zero, n], one)
+    g = np.select([i <= 1, i == 2, i == 3, i == 4], [zero, n, one, one], n)
+    b = np.select([i <= 1, i == 2, i == 3, i == 4], [one, one, n, zero], zero)
+    return (np.stack([r, g, b], axis=1) * 255.0 + 0.5).astype(np.uint8)
+
+
+def _packed(msg: Any) -> Any:
+    """The message's points as a numpy byte array of width * height * point_step bytes."""
+    import numpy as np
+    data = np.frombuffer(msg.data, dtype=np.uint8)
+    row = msg.width * msg.point_step
+    if msg.height > 1 and msg.row_step > row:  # padded rows: drop the padding
+        data = data[:msg.height * msg.row_step].reshape(msg.height, msg.row_step)[:, :row]
+        data = np.ascontiguousarray(data).reshape(-1)
+    if data.size < msg.height * row:
+        raise ValueError(f'data holds {data.size} bytes, width * height * point_step is '
+                         f'{msg.height * row}')
+    return data[:msg.height * row]
+
+
+def encode_cloud(msg: Any) -> tuple[bytes, dict]:
+    """sensor_msgs/PointCloud2 -> float32 xyz of the finite points, then uint8 rgb if the
+    cloud has colour, as rviz's default colour transformers give it: `rgb`/`rgba` packed in
+    a float32 or uint32 (RGB8), else `intensity` on rviz's rainbow between its min and max."""
+    import numpy as np
+    fields = {f.name: f for f in msg.fields}
+    for axis in 'xyz':
+        if axis not in fields or fields[axis].datatype not in POINT_FIELD_TYPES:
+            raise ValueError(f'no {axis} field of a numeric type')
+    colour = next((name for name in ('rgb', 'rgba', 'intensity') if name in fields
+                   and fields[name].datatype in POINT_FIELD_TYPES), None)
+    order = '>' if msg.is_bigendian else '<'
+    names = ['x', 'y', 'z'] + ([colour] if colour else [])
+    formats = [order + POINT_FIELD_TYPES[fields[n].datatype] for n in names]
+    if colour in ('rgb', 'rgba'):
+        formats[3] = order + 'u4'  # the float32's bits are the packed 0x00RRGGBB
+    count = msg.width * msg.height
+    if msg.point_step <= 0 or count == 0:
+        return b'', {'points': 0, 'color': None}
+    try:
+        points = np.ndarray((count,), buffer=_packed(msg), dtype=np.dtype(
+            {'names': names, 'formats': formats, 'itemsize': msg.point_step,
+             'offsets': [fields[n].offset for n in names]}))
+    except (TypeError, ValueError) as error:
+        raise ValueError(f'fields do not fit point_step {msg.point_step}: {error}') from None
+    xyz = np.empty((count, 3), dtype='<f4')
+    for i, axis in enumerate('xyz'):
+        xyz[:, i] = points[axis]
+    finite = np.isfinite(xyz).all(axis=1)
+    xyz = xyz[finite]
+    if colour in ('rgb', 'rgba'):
+        packed = points[colour][finite]
+        rgb = np.stack([(packed >> 16) & 255, (packed >> 8) & 255, packed & 255],
+                       axis=1).astype(np.uint8)
+    elif colour == 'intensity':
+        values = points[colour][finite].astype(np.float64)
+        valid = values[np.isfinite(values)]
+        low, high = (float(valid.min()), float(valid.max())) if valid.size else (0.0, 0.0)
+        span = high - low
+        normalized = (values - low) / span if span > 0 else np.zeros_like(values)
+        rgb = _rainbow(1.0 - normalized)
+    else:
+        rgb = None
+    body = xyz.tobytes() + (rgb.tobytes() if rgb is not None else b'')
+    return body, {'points': int(xyz.shape[0]), 'color': colour and ('intensity' if colour ==
+                                                                    'intensity' else 'rgb')}
+
+
+IMAGE_ENCODINGS = {  # encoding: (numpy type, channels)
+    'rgb8': ('u1', 3), 'bgr8': ('u1', 3), 'rgba8': ('u1', 4), 'bgra8': ('u1', 4),
+    'mono8': ('u1', 1), '8UC1': ('u1', 1), '8UC3': ('u1', 3), '8UC4': ('u1', 4),
+    'mono16': ('u2', 1), '16UC1': ('u2', 1), '32FC1': ('f4', 1)}
+
+
+def encode_image(msg: Any) -> tuple[bytes, dict]:
+    """sensor_msgs/Image -> RGBA bytes for a canvas. 16-bit and float images are scaled from
+    their min to max, as rviz's Image display does by default (Normalize Range)."""
+    import numpy as np
+    if msg.encoding not in IMAGE_ENCODINGS:
+        raise ValueError(f'encoding {msg.encoding!r} is not drawn (drawn: '
+                         f'{", ".join(IMAGE_ENCODINGS)})')
+    kind, channels = IMAGE_ENCODINGS[msg.encoding]
+    dtype = np.dtype(kind).newbyteorder('>' if msg.is_bigendian else '<')
+    width, height = msg.width, msg.height
+    row = width * channels * dtype.itemsize
+    data = np.frombuffer(msg.data, dtype=np.uint8)
+    if msg.step < row or data.size < msg.step * height:
+        raise ValueError(f'{data.size} bytes do not hold {height} rows of step {msg.step} '
+                         f'({width} x {msg.encoding})')
+    rows = data[:msg.step * height].reshape(height, msg.step)[:, :row]
+    pixels = np.ascontiguousarray(rows).view(dtype).reshape(height, width, channels)
+    if kind != 'u1':
+        values = pixels.astype(np.float64)
+        finite = values[np.isfinite(values)]
+        low, high = (finite.min(), finite.max()) if finite.size else (0.0, 0.0)
+        scaled = (values - low) * (255.0 / (high - low)) if high > low else values * 0
+        pixels = np.nan_to_num(scaled).clip(0, 255).astype(np.uint8)
+    rgba = np.empty((height, width, 4), dtype=np.uint8)
+    rgba[..., 3] = 255
+    if channels == 1:
+        rgba[..., :3] = pixels
+    elif msg.encoding.startswith('bgr'):
+        rgba[..., :3] = pixels[..., 2::-1]
+    else:
+        rgba[..., :3] = pixels[..., :3]
+    if channels == 4:
+        rgba[..., 3] = pixels[..., 3]
+    return rgba.tobytes(), {'width': width, 'height': height, 'encoding': msg.encoding}
+
+
+STREAMS = {'cloud': ('sensor_msgs/msg/PointCloud2', encode_cloud),
+           'image': ('sensor_msgs/msg/Image', encode_image)}
+
+
+class Stream:
+    """The latest message of one topic, its sequence number, and its encoding (made once)."""
+
+    def __init__(self) -> None:
+        self.seq = 0
+        self.msg: Any = None
+        self.changed = asyncio.Event()
+        self.encoded: tuple[int, bytes, dict] | None = None
+
+    def received(self, msg: Any) -> None:  # on the event loop
+        self.seq += 1
+        self.msg = msg
+        self.changed.set()
+        self.changed = asyncio.Event()
+
+
+async def stream_route(request: web.Request) -> web.StreamResponse:
+    kind = request.match_info['kind']
+    topic = request.query.get('topic', '')
+    if kind not in STREAMS or not topic.startswith('/') or len(topic) > MAX_TOPIC:
+        raise web.HTTPBadRequest(text=f'topic must be an absolute topic name, got {topic!r}\n')
+    try:
+        after = int(request.query.get('after', '0'))
+    except ValueError:
+        raise web.HTTPBadRequest(text='after must be an integer\n') from None
+    msg_type, encode = STREAMS[kind]
+    app = request.app
+    streams = app.setdefault('rviz_streams', {})
+    stream = streams.get((kind, topic))
+    if stream is None:
+        from rclpy.qos import qos_profile_sensor_data
+        stream = streams[(kind, topic)] = Stream()
+        # Best effort, keep last 5: matches sensors' best-effort publishers and reliable ones.
+        await app['bridge'].subscribe(topic, msg_type, stream.received,
+                                      qos=qos_profile_sensor_data)
+    if stream.seq <= after:
+        try:
+            await asyncio.wait_for(stream.changed.wait(), STREAM_WAIT)
+        except asyncio.TimeoutError:
+            pass
+    if stream.seq <= after or stream.msg is None:
+        return web.Response(status=204, headers={'X-Rviz': json.dumps({'seq': stream.seq})})
+    if stream.encoded is None or stream.encoded[0] != stream.seq:
+        seq, msg = stream.seq, stream.msg
+        try:
+            body, meta = await asyncio.get_running_loop().run_in_executor(None, encode, msg)
+        except ValueError as error:
+            body, meta = b'', {'error': str(error)}
+        meta.update(seq=seq, frame=msg.header.frame_id)
+        stream.encoded = (seq, body, meta)
+    _, body, meta = stream.encoded
+    return web.Response(body=body, content_type='application/octet-stream',
+                        headers={'X-Rviz': json.dumps(meta), 'Cache-Control': 'no-store'})
+
+
+# ------------------------------------------------------------------ tool belt
+# rviz2's tools: (default topic, message type). 2D Pose Estimate's covariance is rviz's
+# default: 0.5 m standard deviation in x and y, pi/12 in yaw (as float32: 0.0685389...).
+TOOLS = {'initialpose': ('/initialpose', 'geometry_msgs/msg/PoseWithCovarianceStamped'),
+         'goal': ('/goal_pose', 'geometry_msgs/msg/PoseStamped'),
+         'point': ('/clicked_point', 'geometry_msgs/msg/PointStamped')}
+INITIAL_POSE_COVARIANCE = {0: 0.25, 7: 0.25, 35: 0.06853891909122467}
+
+
+def tool_message(tool: str, frame: str, stamp: Any, x: float, y: float, z: float,
+                 yaw: float) -> Any:
+    from rqt_web.forms import interface_class
+    msg = interface_class(TOOLS[tool][1], 'msg')()
+    msg.header.frame_id = frame
+    msg.header.stamp = stamp
+    if tool == 'point':
+        msg.point.x, msg.point.y, msg.point.z = x, y, z
+        return msg
+    pose = msg.pose.pose if tool == 'initialpose' else msg.pose
+    pose.position.x, pose.position.y, pose.position.z = x, y, z
+    pose.orientation.z, pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+    if tool == 'initialpose':
+        covariance = [0.0] * 36
+        for index, value in INITIAL_POSE_COVARIANCE.items():
+            covariance[index] = value
+        msg.pose.covariance = covariance
+    return msg
+
+
+async def tool_route(request: web.Request) -> web.Response:
+    try:
+        body = await request.json()
+        tool = str(body.get('tool'))
+        topic = str(body.get('topic') or TOOLS[tool][0])
+        frame = str(body.get('frame', ''))
+        x, y, z, yaw = (float(body.get(k, 0.0)) for k in ('x', 'y', 'z', 'yaw'))
+        if not all(math.isfinite(v) for v in (x, y, z, yaw)):
+            raise ValueError('x, y, z and yaw must be finite numbers')
+        if not frame or len(frame) > MAX_TOPIC or not topic.startswith('/'):
+            raise ValueError('frame must be a frame id and topic an absolute topic name')
+    except (ValueError, TypeError, KeyError, AttributeError) as error:
+        raise web.HTTPBadRequest(text=f'tool must be one of {", ".join(TOOLS)} with finite '
+                                 f'x, y, z, yaw: {error}\n') from None
+    bridge = request.app['bridge']
+    stamp = await bridge.run(lambda: bridge.node.get_clock().now().to_msg())
+    msg = tool_message(tool, frame, stamp, x, y, z, yaw)
+    try:
+        await bridge.publish(topic, TOOLS[tool][1], msg)
+    except Exception as error:  # rclpy refusing the topic name
+        raise web.HTTPBadRequest(text=f'cannot publish on {topic}: {error}\n') from None
+    return web.json_response({'published': True, 'topic': topic, 'type': TOOLS[tool][1]})
 
 
 async def config_route(request: web.Request) -> web.Response:
@@ -229,4 +484,6 @@ def add_routes(app: web.Application) -> None:
         web.get('/api/rviz/description', description_route),
         web.get('/api/rviz/markers', markers_route),
         web.get('/api/rviz/latest', latest_route),
-        web.get('/api/rviz/resource', resource_route)])
+        web.get('/api/rviz/resource', resource_route),
+        web.get('/api/rviz/{kind:cloud|image}', stream_route),
+        web.post('/api/rviz/tool', tool_route)])

@@ -32,6 +32,14 @@ VENDOR_FILES = {
     'three.core.js': 'three/build/three.core.js',
     'OrbitControls.js': 'three/examples/jsm/controls/OrbitControls.js',
     'STLLoader.js': 'three/examples/jsm/loaders/STLLoader.js',
+    # Mesh loaders under their examples/jsm layout, so their relative imports resolve.
+    'addons/loaders/ColladaLoader.js': 'three/examples/jsm/loaders/ColladaLoader.js',
+    'addons/loaders/TGALoader.js': 'three/examples/jsm/loaders/TGALoader.js',
+    'addons/loaders/collada/ColladaParser.js':
+        'three/examples/jsm/loaders/collada/ColladaParser.js',
+    'addons/loaders/collada/ColladaComposer.js':
+        'three/examples/jsm/loaders/collada/ColladaComposer.js',
+    'addons/loaders/OBJLoader.js': 'three/examples/jsm/loaders/OBJLoader.js',
 }
 SERVICE_TIMEOUT_MAX = 60.0
 MONITOR_WINDOW = 5.0  # seconds of messages the Topics page's Hz and bandwidth average over
@@ -480,7 +488,7 @@ def make_app(token: str, bind_host: str, port_holder: dict) -> web.Application:
         web.get('/api/interface', interface), web.post('/api/service/call', call_service),
         web.post('/api/topic/publish', publish), web.get('/api/parameters', parameters),
         web.post('/api/parameters/set', set_parameter), web.get('/ws', websocket),
-        web.get('/static/{name}', static_file), web.get('/vendor/{name}', vendor_file),
+        web.get('/static/{name}', static_file), web.get('/vendor/{name:.+}', vendor_file),
         web.get('/{page}', page)])
     tf_feed.add_routes(app)  # /api/tf/...: the TF Tree and RViz pages' data
     rviz.add_routes(app)  # /api/rviz/...: .rviz files, robot description, meshes

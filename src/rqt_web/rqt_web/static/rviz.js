@@ -2,22 +2,31 @@
 // RViz: a 3D view of tf2 frames and the robot model, as rviz2 draws them (Z up, fixed frame
 // at the origin). three.js (npm, served from /vendor) renders; the server gives the .rviz
 // file (?config=), the robot description and every frame's pose in the fixed frame (tf_feed).
-// window.rviz exposes the state for tests: frames, per-display status, model links.
+// window.rviz exposes the state for tests: frames, per-display status, model links, clouds
+// and images received, markers drawn, the active tool and what the tools published.
 (() => {
   const main = document.getElementById('main');
   const params = new URLSearchParams(location.search);
   const PERIOD_MS = 30;  // TF poll: the model follows /tf within about one period
   const state = {fixedFrame: params.get('fixed_frame') || 'map', background: [48, 48, 48],
-    displays: [], frames: {}, status: {}, links: [], ready: false, renders: 0, config: null};
+    displays: [], frames: {}, status: {}, links: [], ready: false, renders: 0, config: null,
+    clouds: {}, images: {}, markers: [], meshes: [], tool: 'interact', published: []};
   window.rviz = state;
 
   const fixedInput = rqt.el('input', {id: 'rviz-fixed-frame', value: state.fixedFrame, size: 16});
   const list = rqt.el('ul', {id: 'rviz-displays'});
   const note = rqt.el('span', {id: 'rviz-note', class: 'keys'});
   const view = rqt.el('div', {id: 'rviz-view', style: 'width:100%;height:560px;position:relative'});
+  // The tool belt: rviz2's default tools (Interact moves the camera).
+  const TOOL_NAMES = {interact: 'Interact', initialpose: '2D Pose Estimate', goal: '2D Goal Pose',
+    point: 'Publish Point'};
+  const toolButtons = Object.entries(TOOL_NAMES).map(([key, text]) =>
+    rqt.el('button', {id: `rviz-tool-${key}`, 'data-tool': key, text, class: key === 'interact' ? 'active' : ''}));
+  const imagePanel = rqt.el('div', {id: 'rviz-images', class: 'row'});
   main.append(rqt.el('div', {class: 'row'}, rqt.el('label', {}, 'Fixed Frame ', fixedInput),
     rqt.el('button', {id: 'rviz-top', text: 'Top view'}),
-    rqt.el('button', {id: 'rviz-save', text: 'Save Config As...'}), note), list, view);
+    rqt.el('button', {id: 'rviz-save', text: 'Save Config As...'}), note),
+  rqt.el('div', {class: 'row', id: 'rviz-tools'}, ...toolButtons), list, view, imagePanel);
   fixedInput.addEventListener('change', () => { state.fixedFrame = fixedInput.value.trim() || 'map'; });
 
   const map = document.createElement('script');
@@ -105,33 +114,76 @@
     };
 
     // Save Config: the page's setup in upstream rviz2's .rviz YAML layout (keys and nesting
-    // as rviz2 writes them), downloaded as a file.
-    const quote = (v) => (typeof v === 'string' && (v === '' || /[:#'"{}\[\],&*?|<>=!%@`-]/.test(v[0]) || v.includes(': '))
-      ? JSON.stringify(v) : String(v));
-    state.saveConfig = () => {
-      const lines = ['Panels:', '  - Class: rviz_common/Displays', '    Name: Displays',
-        '  - Class: rviz_common/Views', '    Name: Views', 'Visualization Manager:', '  Class: ""',
-        '  Displays:'];
-      for (const d of state.displays) {
-        const settings = {...(d.settings || {}), Class: d.class, Name: d.name, Value: d.enabled};
-        if (d.class.endsWith('/RobotModel')) delete settings.Topic;
-        const keys = Object.keys(settings).sort();
-        keys.forEach((key, i) => lines.push(`${i ? '      ' : '    - '}${key}: ${quote(settings[key])}`));
-        if (d.topic && d.class.endsWith('/RobotModel')) lines.push('      Description Topic:', `        Value: ${d.topic}`);
-        else if (d.topic) lines.push('      Topic:', `        Value: ${d.topic}`);
+    // as rviz2 writes them: maps with sorted keys, lists of maps), downloaded as a file.
+    const yamlScalar = (v) => {
+      if (v === null || v === undefined) return '~';
+      if (typeof v !== 'string') return String(v);
+      // Quoted when YAML would read it as something else (a number, bool, null) or choke.
+      const plain = v !== '' && !/^[\s\-?:,\[\]{}#&*!|>'"%@`]/.test(v) && !/(:\s|\s#|:$|\s$|[\n\t"])/.test(v)
+        && !/^(true|false|yes|no|on|off|y|n|null|~)$/i.test(v) && !/^([-+]?[\d.][\d._:eE+-]*|[-+]?\.(inf|nan))$/i.test(v);
+      return plain ? v : JSON.stringify(v);
+    };
+    const toYaml = (map, indent = 0) => {
+      const pad = ' '.repeat(indent);
+      const out = [];
+      for (const key of Object.keys(map).sort()) {
+        const v = map[key];
+        if (Array.isArray(v)) {
+          out.push(v.length ? `${pad}${key}:` : `${pad}${key}: []`);
+          for (const item of v) {
+            const inner = item && typeof item === 'object' ? toYaml(item, indent + 4) : [];
+            if (inner.length) out.push(`${pad}  - ${inner[0].trimStart()}`, ...inner.slice(1));
+            else out.push(`${pad}  - ${item && typeof item === 'object' ? '{}' : yamlScalar(item)}`);
+          }
+        } else if (v && typeof v === 'object') {
+          out.push(...(Object.keys(v).length ? [`${pad}${key}:`, ...toYaml(v, indent + 2)] : [`${pad}${key}: {}`]));
+        } else out.push(`${pad}${key}: ${yamlScalar(v)}`);
       }
-      const [br, bg, bb] = config.background;
+      return out;
+    };
+    const DEFAULT_TOOLS = [['Interact'], ['MoveCamera'], ['Select'], ['FocusCamera'], ['Measure'],
+      ['SetInitialPose', '/initialpose'], ['SetGoal', '/goal_pose'], ['PublishPoint', '/clicked_point']]
+      .map(([name, topic]) => ({class: `rviz_default_plugins/${name}`, topic}));
+    const round = (x) => Number(x.toFixed(6));
+    state.saveConfig = () => {
+      const displays = state.displays.map((d) => {
+        const out = {...(d.settings || {}), Class: d.class, Enabled: d.enabled, Name: d.name, Value: d.enabled};
+        const key = d.class.endsWith('/RobotModel') ? 'Description Topic' : 'Topic';
+        const topic = out[key] && typeof out[key] === 'object' ? out[key] : {};  // QoS kept
+        delete out.Topic;
+        delete out['Description Topic'];
+        if (d.topic) out[key] = {...topic, Value: d.topic};
+        return out;
+      });
+      const tools = ((config.tools || []).length ? config.tools : DEFAULT_TOOLS).map((t) => (
+        t.topic ? {Class: t.class, Topic: {Value: t.topic}} : {Class: t.class}));
       const offset = camera.position.clone().sub(controls.target);
-      const dist = offset.length();
-      lines.push('  Enabled: true', '  Global Options:', `    Background Color: ${br}; ${bg}; ${bb}`,
-        `    Fixed Frame: ${quote(state.fixedFrame)}`, '    Frame Rate: 30', '  Name: root',
-        '  Tools:', '    - Class: rviz_default_plugins/MoveCamera', '  Value: true', '  Views:', '    Current:',
-        '      Class: rviz_default_plugins/Orbit', `      Distance: ${dist.toFixed(4)}`,
-        '      Focal Point:', `        X: ${controls.target.x}`, `        Y: ${controls.target.y}`, `        Z: ${controls.target.z}`,
-        '      Name: Current View', `      Pitch: ${Math.asin(offset.z / dist).toFixed(4)}`,
-        '      Target Frame: <Fixed Frame>', '      Value: Orbit (rviz)', `      Yaw: ${Math.atan2(offset.y, offset.x).toFixed(4)}`,
-        '    Saved: ~', 'Window Geometry:', '  Height: 800', '  Width: 1200', '');
-      return lines.join('\n');
+      const distance = offset.length();
+      const common = {Name: 'Current View', 'Near Clip Distance': 0.01, 'Target Frame': '<Fixed Frame>'};
+      const current = String((config.view || {}).Class || '').endsWith('TopDownOrtho')
+        ? {...common, Class: 'rviz_default_plugins/TopDownOrtho', Angle: 0, 'Invert Z Axis': false,
+          // the height the page's 45-degree camera looks from, back to pixels per metre
+          Scale: round(view.clientHeight / 2 / (offset.z * Math.tan(Math.PI / 8))),
+          Value: 'TopDownOrtho (rviz_default_plugins)', X: round(controls.target.x), Y: round(controls.target.y)}
+        : {...common, Class: 'rviz_default_plugins/Orbit', Distance: round(distance),
+          'Focal Point': {X: round(controls.target.x), Y: round(controls.target.y), Z: round(controls.target.z)},
+          Pitch: round(Math.asin(offset.z / distance)),
+          Value: 'Orbit (rviz)', Yaw: round((Math.atan2(offset.y, offset.x) + 2 * Math.PI) % (2 * Math.PI))};
+      const [br, bg, bb] = config.background;
+      return toYaml({
+        Panels: [
+          {Class: 'rviz_common/Displays', 'Help Height': 78, Name: 'Displays',
+            'Property Tree Widget': {Expanded: ['/Global Options1'], 'Splitter Ratio': 0.5}, 'Tree Height': 557},
+          {Class: 'rviz_common/Views', Expanded: ['/Current View1'], Name: 'Views', 'Splitter Ratio': 0.5}],
+        'Visualization Manager': {
+          Class: '', Displays: displays, Enabled: true,
+          'Global Options': {'Background Color': `${br}; ${bg}; ${bb}`, 'Fixed Frame': state.fixedFrame,
+            'Frame Rate': 30},
+          Name: 'root', Tools: tools, Transformation: {Current: {Class: 'rviz_default_plugins/TF'}},
+          Value: true, Views: {Current: current, Saved: null}},
+        'Window Geometry': {Displays: {collapsed: false}, Height: window.innerHeight, 'Hide Left Dock': false,
+          'Hide Right Dock': false, Views: {collapsed: false}, Width: window.innerWidth, X: 0, Y: 0},
+      }).join('\n') + '\n';
     };
     document.getElementById('rviz-save').addEventListener('click', () => {
       const link = rqt.el('a', {href: URL.createObjectURL(new Blob([state.saveConfig()], {type: 'text/yaml'})),
@@ -189,6 +241,41 @@
       return values.length === n && values.every(Number.isFinite) ? values : Array(n).fill(0);
     };
     const resourceUrl = (uri) => `/api/rviz/resource?uri=${encodeURIComponent(uri)}`;
+    // Mesh files, loaded once per URI: STL, DAE (three's ColladaLoader) and OBJ (OBJLoader).
+    // Collada's up_axis is ignored as rviz does (assimp's IGNORE_UP_DIRECTION): three turns
+    // Z_UP files to Y up, undone here; the unit scale is kept. A DAE's textures are fetched
+    // next to it (resolved against its package:// or file:// URI).
+    const meshCache = {};
+    const loadMesh = (uri) => {
+      meshCache[uri] ??= (async () => {
+        const url = resourceUrl(uri);
+        const ext = uri.toLowerCase().split('.').pop();
+        if (ext === 'stl') return new THREE.Mesh(await stl.loadAsync(url), new THREE.MeshLambertMaterial());
+        if (ext === 'dae') {
+          const {ColladaLoader} = await import('/vendor/addons/loaders/ColladaLoader.js');
+          const manager = new THREE.LoadingManager();
+          const base = uri.slice(0, uri.lastIndexOf('/') + 1);
+          manager.setURLModifier((u) => (u.startsWith('/api/rviz/') && !u.startsWith('/api/rviz/resource?')
+            ? resourceUrl(base + u.slice('/api/rviz/'.length)) : u));
+          const dae = await new ColladaLoader(manager).loadAsync(url);
+          dae.scene.rotation.set(0, 0, 0);
+          dae.scene.userData.embedded = true;  // the file's own materials
+          return dae.scene;
+        }
+        if (ext === 'obj') {
+          const {OBJLoader} = await import('/vendor/addons/loaders/OBJLoader.js');
+          return new OBJLoader().loadAsync(url);
+        }
+        throw new Error('only STL, DAE and OBJ meshes are drawn');
+      })();
+      return meshCache[uri];
+    };
+    // A copy of a loaded mesh in `material`, or in its own materials when `own` and it has them.
+    const meshInstance = (template, material, own) => {
+      const copy = template.clone(true);
+      if (!(own && template.userData.embedded)) copy.traverse((o) => { if (o.isMesh) o.material = material; });
+      return copy;
+    };
     const buildModel = (xml) => {
       robot.clear();
       for (const key of Object.keys(linkGroups)) delete linkGroups[key];
@@ -242,15 +329,14 @@
           } else if (kind === 'mesh') {
             const uri = geometry.getAttribute('filename') || '';
             const scale = geometry.getAttribute('scale') ? nums(geometry.getAttribute('scale'), 3) : [1, 1, 1];
-            if (!uri.toLowerCase().endsWith('.stl')) {
-              problems.push(`link '${name}': mesh ${uri}: only STL meshes are drawn`);
-            } else {
-              stl.load(resourceUrl(uri), (geo) => {
-                const mesh = new THREE.Mesh(geo, material);
-                mesh.scale.set(...scale);
-                holder.add(mesh);
-              }, undefined, () => setStatus(robotDisplay.name, `Could not load mesh ${uri} of link '${name}'`));
-            }
+            // A URDF <material> colours the whole mesh; without one a DAE keeps its own (rviz).
+            loadMesh(uri).then((template) => {
+              const scaled = new THREE.Group();
+              scaled.scale.set(...scale);
+              scaled.add(meshInstance(template, material, !mat));
+              holder.add(scaled);
+              state.meshes.push({link: name, uri});
+            }, (error) => setStatus(robotDisplay.name, `Could not load mesh ${uri} of link '${name}': ${error.message || error}`));
           }
           group.add(holder);
         }
@@ -272,6 +358,7 @@
       }
     };
 
+    const afterTf = [];  // displays placed in their frame at each TF poll
     const place = (object, pose) => {
       object.position.set(...pose.translation);
       object.quaternion.set(...pose.rotation);
@@ -321,6 +408,7 @@
         if (missing.length) setStatus(robotDisplay.name, `No transform from [${missing[0]}] to [${fixed}]`);
         else if (state.status[robotDisplay.name]?.startsWith('No transform')) setStatus(robotDisplay.name, 'OK');
       }
+      for (const hook of afterTf) hook();
       state.updated = performance.now();
     };
 
@@ -331,6 +419,10 @@
       return {d, group, type: d.class.endsWith('/MarkerArray') ? 'MarkerArray' : 'Marker'};
     });
     const colour = (c) => new THREE.Color(c[0], c[1], c[2]);
+    const meshErrors = {};
+    // Where a marker's frame was when it came (rviz transforms a marker once, unless it is
+    // frame_locked: then it follows its frame). Keyed by display, ns, id; renewed per message.
+    const frozen = {};
     const shapeMaterial = (c) => new THREE.MeshLambertMaterial({color: colour(c), transparent: c[3] < 1, opacity: c[3]});
     const markerObject = (m) => {
       const [sx, sy, sz] = m.scale;
@@ -379,6 +471,13 @@
           sprite.position.set(0, 0, 0);
           return sprite;
         }
+        case 10: {  // MESH_RESOURCE: scale multiplies the mesh; its own materials if asked
+          const holder = new THREE.Group();
+          holder.scale.set(sx, sy, sz);
+          loadMesh(m.mesh).then((template) => holder.add(meshInstance(template, shapeMaterial(m.color),
+            m.embedded)), (error) => { meshErrors[m.mesh] = String(error.message || error); });
+          return holder;
+        }
         case 11: {  // TRIANGLE_LIST
           const geo = new THREE.BufferGeometry().setFromPoints(pts);
           geo.computeVertexNormals();
@@ -390,14 +489,22 @@
       }
     };
     const pollMarkers = async () => {
+      const drawn = [];
       for (const md of markerDisplays) {
         const data = await rqt.get(`/api/rviz/markers?topic=${encodeURIComponent(md.d.topic || '/visualization_marker')}&type=${md.type}`);
         md.group.clear();
         const problems = [];
         for (const m of data.markers) {
-          const frame = state.frames[m.frame];
+          const key = `${md.d.name}/${m.ns}/${m.id}`;
+          let frame = state.frames[m.frame];
+          if (!m.frame_locked && frozen[key]?.version === m.version) frame = frozen[key].pose;
           if (!frame || frame.error) {
             problems.push(`No transform from [${m.frame}] to [${state.fixedFrame}]`);
+            continue;
+          }
+          if (!m.frame_locked) frozen[key] = {version: m.version, pose: frame};
+          if (m.type === 10 && meshErrors[m.mesh]) {
+            problems.push(`Could not load mesh ${m.mesh}: ${meshErrors[m.mesh]}`);
             continue;
           }
           const object = markerObject(m);
@@ -413,9 +520,13 @@
           inner.add(object);
           outer.add(inner);
           md.group.add(outer);
+          outer.updateMatrixWorld(true);
+          const at = inner.getWorldPosition(new THREE.Vector3());
+          drawn.push({display: md.d.name, ns: m.ns, id: m.id, type: m.type, position: [at.x, at.y, at.z]});
         }
         setStatus(md.d.name, problems.length ? problems[0] : `OK (${data.markers.length} markers)`);
       }
+      state.markers = drawn;
     };
     const tickMarkers = async () => {
       try {
@@ -506,6 +617,168 @@
       setTimeout(tickTopics, 100);
     };
     if (axesDisplays.length || topicDisplays.length) tickTopics();
+
+    // PointCloud2 and Image: each new message once, as binary the server made with numpy
+    // (GET waits up to 1 s for one newer than `after`).
+    const streamLoop = async (kind, d, draw) => {
+      let after = 0;
+      for (;;) {
+        try {
+          const response = await fetch(`/api/rviz/${kind}?topic=${encodeURIComponent(d.topic || '')}&after=${after}`,
+            {credentials: 'same-origin'});
+          if (!response.ok) throw new Error(await response.text());
+          const meta = JSON.parse(response.headers.get('X-Rviz') || '{}');
+          if (response.status === 204) {
+            if (!meta.seq) setStatus(d.name, `No messages received on ${d.topic}`);
+            continue;
+          }
+          after = meta.seq;
+          const body = await response.arrayBuffer();
+          if (meta.error) setStatus(d.name, meta.error);
+          else draw(meta, body);
+        } catch (error) {
+          setStatus(d.name, String(error.message || error));
+          await new Promise((resolve) => { setTimeout(resolve, 1000); });
+        }
+      }
+    };
+    const frameStatus = (d, group, frame) => {
+      const pose = state.frames[frame];
+      group.visible = Boolean(pose && !pose.error);
+      if (group.visible) place(group, pose);
+      setStatus(d.name, group.visible ? 'OK' : `No transform from [${frame}] to [${state.fixedFrame}]`);
+    };
+    // PointCloud2: THREE.Points of the finite points, coloured as the server's RGB8 or
+    // Intensity transformer gave them (or the display's FlatColor); Size (m) as flat squares,
+    // Style Points as Size (Pixels).
+    for (const d of enabled('/PointCloud2')) {
+      const s = d.settings || {};
+      const pixels = s.Style === 'Points';
+      const size = pixels ? Number(s['Size (Pixels)']) || 3 : Number(s['Size (m)']) || 0.01;
+      const flat = s['Color Transformer'] === 'FlatColor';
+      const flatColour = new THREE.Color(...String(s.Color || '255; 255; 255').split(';').map((v) => Number(v) / 255));
+      const alpha = Number(d.alpha ?? 1);
+      const group = new THREE.Group();
+      scene.add(group);
+      const info = {received: 0, points: 0, frame: null, seq: 0, color: null};
+      state.clouds[d.name] = info;
+      let points = null;
+      streamLoop('cloud', d, (meta, body) => {
+        const geo = new THREE.BufferGeometry();
+        geo.setAttribute('position', new THREE.BufferAttribute(new Float32Array(body, 0, meta.points * 3), 3));
+        const coloured = Boolean(meta.color) && !flat;
+        if (coloured) {
+          geo.setAttribute('color', new THREE.BufferAttribute(new Uint8Array(body, meta.points * 12, meta.points * 3), 3, true));
+        }
+        const material = new THREE.PointsMaterial({size, sizeAttenuation: !pixels, vertexColors: coloured,
+          color: coloured ? 0xffffff : flatColour, transparent: alpha < 1, opacity: alpha});
+        if (points) {
+          group.remove(points);
+          points.geometry.dispose();
+          points.material.dispose();
+        }
+        points = new THREE.Points(geo, material);
+        group.add(points);
+        Object.assign(info, {received: info.received + 1, points: meta.points, frame: meta.frame,
+          seq: meta.seq, color: meta.color});
+        frameStatus(d, group, meta.frame);
+      });
+      afterTf.push(() => { if (info.frame !== null) frameStatus(d, group, info.frame); });
+    }
+    // Image: a panel under the view per display, the image on a canvas of its size, shown
+    // 320 px wide (rviz scales it to its panel, keeping the aspect ratio).
+    for (const d of enabled('/Image')) {
+      const canvas = rqt.el('canvas', {class: 'rviz-image', 'data-name': d.name, width: 1, height: 1,
+        style: 'width:320px;height:auto;image-rendering:pixelated;background:#000'});
+      imagePanel.append(rqt.el('figure', {style: 'margin:4px'}, rqt.el('figcaption', {text: `${d.name} ${d.topic || ''}`}), canvas));
+      const ctx = canvas.getContext('2d');
+      const info = {received: 0, width: 0, height: 0, encoding: null, seq: 0};
+      state.images[d.name] = info;
+      streamLoop('image', d, (meta, body) => {
+        if (canvas.width !== meta.width || canvas.height !== meta.height) {
+          canvas.width = meta.width;
+          canvas.height = meta.height;
+        }
+        if (meta.width && meta.height) {
+          ctx.putImageData(new ImageData(new Uint8ClampedArray(body), meta.width, meta.height), 0, 0);
+        }
+        Object.assign(info, {received: info.received + 1, width: meta.width, height: meta.height,
+          encoding: meta.encoding, seq: meta.seq});
+        setStatus(d.name, 'OK');
+      });
+    }
+
+    // The tool belt. 2D Pose Estimate and 2D Goal Pose: press on the ground plane (the fixed
+    // frame's XY plane) for the position, drag for the orientation, release to publish.
+    // Publish Point: a click publishes the point of the robot or a marker under the mouse,
+    // else of the ground plane. Then back to Interact, as rviz2 does. Topics as rviz2's
+    // (or the .rviz file's Tools).
+    const TOOL_CLASSES = {initialpose: 'SetInitialPose', goal: 'SetGoal', point: 'PublishPoint'};
+    const toolTopic = (tool) => (config.tools || []).find((t) => t.class.endsWith(`/${TOOL_CLASSES[tool]}`))?.topic;
+    const setTool = (tool) => {
+      state.tool = tool;
+      controls.enabled = tool === 'interact';
+      for (const b of toolButtons) b.classList.toggle('active', b.dataset.tool === tool);
+    };
+    for (const b of toolButtons) b.addEventListener('click', () => setTool(b.dataset.tool));
+    const raycaster = new THREE.Raycaster();
+    const ground = new THREE.Plane(new THREE.Vector3(0, 0, 1), 0);
+    const aim = (event) => {
+      const box = renderer.domElement.getBoundingClientRect();
+      raycaster.setFromCamera(new THREE.Vector2((event.clientX - box.left) / box.width * 2 - 1,
+        1 - (event.clientY - box.top) / box.height * 2), camera);
+    };
+    const groundPoint = (event) => {
+      aim(event);
+      return raycaster.ray.intersectPlane(ground, new THREE.Vector3());
+    };
+    const toolArrow = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, 0x19ff00, 0.3, 0.1);
+    toolArrow.visible = false;
+    scene.add(toolArrow);
+    const publishTool = async (tool, at, yaw) => {
+      const body = {tool, frame: state.fixedFrame, x: at.x, y: at.y, z: at.z, yaw, topic: toolTopic(tool)};
+      try {
+        const answer = await rqt.post('/api/rviz/tool', body);
+        state.published.push({...body, topic: answer.topic});
+        note.textContent = `${TOOL_NAMES[tool]}: published on ${answer.topic}`;
+      } catch (error) {
+        note.textContent = `${TOOL_NAMES[tool]}: ${error.message || error}`;
+      }
+    };
+    let pressed = null;
+    const canvas = renderer.domElement;
+    canvas.addEventListener('pointerdown', (event) => {
+      if (state.tool === 'interact' || event.button !== 0) return;
+      if (state.tool === 'point') {
+        aim(event);
+        const hit = raycaster.intersectObjects([robot, ...markerDisplays.map((md) => md.group)], true)
+          .find((h) => h.object.isMesh);
+        const at = hit ? hit.point : groundPoint(event);
+        if (at) publishTool('point', at, 0);
+        setTool('interact');
+        return;
+      }
+      const at = groundPoint(event);
+      if (!at) return;
+      pressed = at;
+      toolArrow.position.copy(at);
+      toolArrow.setDirection(new THREE.Vector3(1, 0, 0));
+      toolArrow.visible = true;
+      canvas.setPointerCapture(event.pointerId);
+    });
+    canvas.addEventListener('pointermove', (event) => {
+      const at = pressed && groundPoint(event);
+      if (at && at.distanceTo(pressed) > 1e-6) toolArrow.setDirection(at.clone().sub(pressed).normalize());
+    });
+    canvas.addEventListener('pointerup', (event) => {
+      if (!pressed) return;
+      const at = groundPoint(event);
+      const yaw = at && at.distanceTo(pressed) > 1e-6 ? Math.atan2(at.y - pressed.y, at.x - pressed.x) : 0;
+      publishTool(state.tool, new THREE.Vector3(pressed.x, pressed.y, 0), yaw);
+      pressed = null;
+      toolArrow.visible = false;
+      setTool('interact');
+    });
 
     const tick = async () => {
       try {
