@@ -16,10 +16,11 @@ TF comes from `tf_feed` (one tf2_ros Buffer for the whole app). Here:
 - GET /api/rviz/resource?uri=package://PKG/PATH or file:///PATH: a mesh or texture file
   (.stl .dae .obj .mtl .png .jpg), package:// resolved through the ament index.
 - GET /api/rviz/cloud?topic=T&after=N and /api/rviz/image?topic=T&after=N (PointCloud2 and
-  Image displays): the latest message newer than the page's N, waited for up to 1 s (204 No
-  Content if none came), as binary made once per message with numpy: a cloud's finite
-  points as float32 x, y, z then, if coloured, uint8 r, g, b per point; an image as RGBA
-  bytes. The `X-Rviz` header gives JSON: seq, frame, points or width/height, colour.
+  Image displays; &reliability=Best Effort as the display's Topic QoS, else reliable): the
+  latest message newer than the page's N, waited for up to 1 s (204 No Content if none
+  came), as binary made once per message with numpy: a cloud's finite points as float32 x,
+  y, z then, if coloured, uint8 r, g, b per point; an image as RGBA bytes. The `X-Rviz`
+  header gives JSON: seq, frame, points or width/height, colour.
 - POST /api/rviz/tool {tool: initialpose|goal|point, topic, frame, x, y, z, yaw}: what the
   tool belt's 2D Pose Estimate, 2D Goal Pose and Publish Point publish, stamped now.
 """
@@ -78,13 +79,15 @@ def _topic(d: dict) -> Any:
 
 def _display(d: dict) -> dict:
     topic = _topic(d)
+    qos = d.get('Topic') if isinstance(d.get('Topic'), dict) else {}
     description = d.get('Description Topic')
     if isinstance(description, dict):
         topic = description.get('Value', topic)
     return {'class': str(d.get('Class', '')), 'name': str(d.get('Name', '')),
             'enabled': bool(d.get('Value', True)), 'topic': topic,
-            'alpha': d.get('Alpha', 1), 'settings': {k: v for k, v in d.items()
-                                                     if isinstance(v, (str, int, float, bool))}}
+            'alpha': d.get('Alpha', 1),
+            'reliability': str(qos.get('Reliability Policy', 'Reliable')),
+            'settings': {k: v for k, v in d.items() if isinstance(v, (str, int, float, bool))}}
 
 
 class DescriptionFeed:
@@ -349,16 +352,20 @@ async def stream_route(request: web.Request) -> web.StreamResponse:
         after = int(request.query.get('after', '0'))
     except ValueError:
         raise web.HTTPBadRequest(text='after must be an integer\n') from None
+    reliable = request.query.get('reliability', 'Reliable') != 'Best Effort'
     msg_type, encode = STREAMS[kind]
     app = request.app
     streams = app.setdefault('rviz_streams', {})
-    stream = streams.get((kind, topic))
+    stream = streams.get((kind, topic, reliable))
     if stream is None:
-        from rclpy.qos import qos_profile_sensor_data
-        stream = streams[(kind, topic)] = Stream()
-        # Best effort, keep last 5: matches sensors' best-effort publishers and reliable ones.
-        await app['bridge'].subscribe(topic, msg_type, stream.received,
-                                      qos=qos_profile_sensor_data)
+        from rclpy.qos import QoSProfile, ReliabilityPolicy
+        stream = streams[(kind, topic, reliable)] = Stream()
+        # rviz2's display QoS: keep last 5, Reliable unless the display's Topic says Best
+        # Effort (a best-effort subscription drops a large cloud when one fragment is lost:
+        # 2 of 10 clouds/s arrived here; a best-effort publisher needs it, as in rviz2).
+        qos = QoSProfile(depth=5, reliability=ReliabilityPolicy.RELIABLE if reliable
+                         else ReliabilityPolicy.BEST_EFFORT)
+        await app['bridge'].subscribe(topic, msg_type, stream.received, qos=qos)
     if stream.seq <= after:
         try:
             await asyncio.wait_for(stream.changed.wait(), STREAM_WAIT)
