@@ -66,6 +66,10 @@ def test_rosdep_page_offline(workspace) -> None:
         "rosdep: my_pkg depends on 'no_such_key', which no rule resolves (not a ROS package of "
         "this environment, not in rosdep_workspace's rules) -- fix: correct the key in "
         'my_pkg/package.xml, or add a rule (docs/rosdep.md)\n')
+    unknown = rosdep(root, env, 'check', '--from-paths', 'src', '--ignore-src')
+    assert unknown.returncode == 1
+    assert unknown.stderr.startswith("rosdep: my_pkg depends on 'no_such_key', which no rule "
+                                     'resolves'), unknown.stderr
     drop(root, 'no_such_key')
 
     # Without --ignore-src the ROS packages resolve through the workspace's rules: installed.
@@ -91,3 +95,15 @@ def test_rosdep_page_offline(workspace) -> None:
     done = rosdep(root, env, 'install', '--from-paths', 'src', '-y', '--ignore-src')
     assert done.returncode == 0, done
     assert done.stdout == '#All required rosdeps installed successfully\n'
+
+
+def test_every_key_of_this_workspace_resolves(ros_env, tmp_path) -> None:
+    """The page's commands typed in this workspace itself: each key its packages declare is
+    a ROS package of the environment or has a rule (a new dependency needs one)."""
+    env = dict(ros_env, ROSDEP_WORKSPACE_STATE=str(tmp_path / 'rosdep'))
+    repo = Path(__file__).resolve().parent.parent
+    check = rosdep(repo, env, 'check', '--from-paths', 'src', '--ignore-src')
+    assert 'no rule resolves' not in check.stderr, check.stderr
+    # Only system packages (the apt ones setup does not install) may be left to install.
+    left = check.stdout.splitlines()[1:] if check.returncode else []
+    assert all(line.startswith('apt\t') for line in left), check.stdout

@@ -18,8 +18,9 @@ from pathlib import Path
 from rosdep_workspace import sources
 
 STATE_ENV = 'ROSDEP_WORKSPACE_STATE'
-MISSING_KEY = re.compile(r'^(\S+): Cannot locate rosdep definition for \[([^\]]+)\]$',
-                         re.MULTILINE)
+# `install` and `keys` say `pkg: Cannot locate...`, `check` says `ERROR[pkg]: Cannot locate...`.
+MISSING_KEY = re.compile(r'^(?:ERROR\[)?([^\s\[\]:]+)\]?: Cannot locate rosdep definition for '
+                         r'\[([^\]]+)\]$', re.MULTILINE)
 
 
 def state_dir() -> Path:
