@@ -406,7 +406,10 @@ def test_dae_and_obj_meshes_and_frame_locked_mesh_markers(ros_env, probe, tmp_pa
                     && Math.abs(m.position[0] - 1) < 1e-6)''', timeout=20000)
                 after = {m['ns']: m['position'] for m in page.evaluate('window.rviz.markers')}
                 status = page.evaluate('window.rviz.status')
-                screenshot(page, 'rviz_meshes_moved')
+                page.wait_for_timeout(100)  # animation frames with the marker moved
+                moved_at = page.evaluate('[[1, -1], [-2, -1]].map(([x, y]) => '
+                                         'window.rviz.project(x, y, 0.3))')
+                moved = screenshot(page, 'rviz_meshes_moved')
             finally:
                 browser.close()
     finally:
@@ -424,3 +427,7 @@ def test_dae_and_obj_meshes_and_frame_locked_mesh_markers(ros_env, probe, tmp_pa
     # in the marker's blue, the DAE in its embedded red.
     for (x, y), channel in zip(at, (0, 1, 2, 0), strict=True):
         assert dominant(region(shown, x, y), channel), (x, y, region(shown, x, y))
+    # After the move, the blue frame-locked marker is drawn at x = 1, and gone from x = -2.
+    shown = PILImage.open(moved).convert('RGB')
+    assert dominant(region(shown, *moved_at[0]), 2), region(shown, *moved_at[0])
+    assert near(region(shown, *moved_at[1]), (48, 48, 48)), region(shown, *moved_at[1])
