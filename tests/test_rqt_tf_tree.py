@@ -7,7 +7,9 @@ under its parent with rqt_tf_tree's edge labels. Screenshot: artifacts/rqt/tf_tr
 
 from __future__ import annotations
 
+import json
 import re
+import urllib.request
 from pathlib import Path
 
 import pytest
@@ -76,7 +78,25 @@ def test_tf_tree_page_shows_the_live_frames(tmp_path: Path) -> None:
                 assert float(re.search(r'Buffer length: ([\d.]+)', label).group(1)) > 0.5
                 assert float(re.search(r'Most recent transform: ([\d.]+)', label).group(1)) > 1e9
             assert shot.stat().st_size > 10000
+            _check_poses_api(server)
         finally:
             for process in reversed(processes):
                 process.stop()
             server.stop()
+
+
+def _check_poses_api(server) -> None:
+    """The RViz page's one request: poses, parents and a version; with `after`, the answer
+    waits for newer tf data (turtle1 comes at 62.5 Hz here, so it is newer at once)."""
+    def get(query: str) -> dict:
+        url = server.page_url('/api/tf/poses', fixed_frame='world') + query
+        with urllib.request.urlopen(url, timeout=10) as response:
+            return json.loads(response.read())
+
+    first = get('')
+    assert first['parents'] == {'mystaticturtle': 'world', 'turtle1': 'world',
+                                'carrot1': 'turtle1'}, first['parents']
+    assert first['poses']['mystaticturtle']['translation'] == [0.0, 0.0, 1.0]
+    newer = get(f'&after={first["version"]}')
+    assert newer['version'] > first['version'], (first['version'], newer['version'])
+    assert sorted(newer['poses']) == ['carrot1', 'mystaticturtle', 'turtle1', 'world']

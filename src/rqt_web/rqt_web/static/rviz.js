@@ -7,7 +7,6 @@
 (() => {
   const main = document.getElementById('main');
   const params = new URLSearchParams(location.search);
-  const PERIOD_MS = 30;  // TF poll: the model follows /tf within about one period
   const state = {fixedFrame: params.get('fixed_frame') || 'map', background: [48, 48, 48],
     displays: [], frames: {}, status: {}, links: [], ready: false, renders: 0, config: null,
     clouds: {}, images: {}, markers: [], meshes: [], tool: 'interact', published: []};
@@ -75,7 +74,19 @@
     // Multisampling off when point clouds are shown: it does nothing for points and cost 2.4x
     // per frame with 100,000 of them in Chromium's software renderer (7 -> 17 frames/s).
     const clouds = state.displays.some((d) => d.enabled && d.class.endsWith('/PointCloud2'));
-    const renderer = new THREE.WebGLRenderer({antialias: !clouds, preserveDrawingBuffer: true});
+    // Off in a software renderer too (no GPU: SwiftShader, llvmpipe), where 4 samples a pixel
+    // are 4 times the fragment work on the CPU: with r2d2 and 107 TF frames, 34 -> 48 frames/s
+    // and the /joint_states-to-screen lag 55 -> 38 ms (p50), the CPU shared with ROS here.
+    const software = (() => {
+      const gl = document.createElement('canvas').getContext('webgl2') || document.createElement('canvas').getContext('webgl');
+      if (!gl) return false;
+      const info = gl.getExtension('WEBGL_debug_renderer_info');
+      const name = String(gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER));
+      gl.getExtension('WEBGL_lose_context')?.loseContext();
+      return /SwiftShader|llvmpipe|softpipe|software/i.test(name);
+    })();
+    state.antialias = !clouds && !software;
+    const renderer = new THREE.WebGLRenderer({antialias: state.antialias, preserveDrawingBuffer: true});
     renderer.outputColorSpace = THREE.LinearSRGBColorSpace;
     renderer.setSize(view.clientWidth, view.clientHeight);
     const [r, g, b] = config.background;
@@ -366,25 +377,27 @@
       object.position.set(...pose.translation);
       object.quaternion.set(...pose.rotation);
     };
-    const pollTf = async () => {
-      const fixed = state.fixedFrame;
-      const data = await rqt.get(`/api/tf/poses?fixed_frame=${encodeURIComponent(fixed)}`);
+    // TF: a worker asks the server for every frame's pose in the fixed frame, and their parents,
+    // in one request that waits (up to 1 s) for tf data newer than its last answer; at most one
+    // request in flight and one per animation frame. The main thread only applies the answer:
+    // here (software WebGL at 40 frames/s) a fetch's promise or a setTimeout on the main thread
+    // ran 45-65 ms late, a worker's message 15 ms (p50), which is what the model's lag was made of.
+    const applyTf = (data) => {
+      const fixed = data.fixed_frame;
+      if (fixed !== state.fixedFrame) return;  // asked before the Fixed Frame box changed
       state.frames = data.poses;
-      const parents = {};
       for (const [name, pose] of Object.entries(data.poses)) {
         if (tfDisplay && !pose.error) {
           const item = tfFrame(name);
           place(item.group, pose);
           item.group.visible = true;
-          parents[name] = item;
         } else if (tfObjects[name]) {
           tfObjects[name].group.visible = false;
         }
       }
       if (tfDisplay) {
-        const frames = await rqt.get('/api/tf/frames');
-        for (const [child, info] of Object.entries(frames.frames)) {
-          const c = data.poses[child], p = data.poses[info.parent];
+        for (const [child, parent] of Object.entries(data.parents)) {
+          const c = data.poses[child], p = data.poses[parent];
           const item = tfObjects[child];
           if (!item) continue;
           item.line.visible = Boolean(c && p && !c.error && !p.error);
@@ -814,18 +827,60 @@
       setTool('interact');
     });
 
-    const tick = async () => {
+    // The worker gets the fixed frame at each animation frame (the tick that allows its next
+    // request); a changed one cancels the request in flight. Without frames (a hidden page) it
+    // asks once a second.
+    const TF_FETCHER = `const base = new URL('/api/tf/poses', self.location.href.replace(/^blob:/, '')).href;
+      // after = -1: the first answer (and the first after a new fixed frame) comes at once.
+      let fixed = null, after = -1, ticked = false, wake = null, controller = null;
+      self.onmessage = ({data}) => {
+        if (data !== fixed) {
+          if (controller && fixed !== null) controller.abort();
+          fixed = data;
+          after = -1;
+        }
+        ticked = true;
+        if (wake) wake();
+        else if (!controller) loop();
+      };
+      const loop = async () => {
+        for (;;) {
+          if (!ticked) await new Promise((resolve) => { wake = resolve; setTimeout(resolve, 1000); });
+          wake = null;
+          ticked = false;
+          const asked = fixed;
+          controller = new AbortController();
+          try {
+            const response = await fetch(base + '?fixed_frame=' + encodeURIComponent(asked) + '&after=' + after,
+              {credentials: 'same-origin', signal: controller.signal});
+            if (!response.ok) throw new Error(await response.text());
+            const data = await response.json();
+            if (asked !== fixed) continue;
+            after = data.version;
+            self.postMessage({data});
+          } catch (error) {
+            if (asked !== fixed) continue;
+            self.postMessage({error: String(error.message || error)});
+            await new Promise((resolve) => { setTimeout(resolve, 1000); });
+          }
+        }
+      };`;
+    const tfWorker = new Worker(URL.createObjectURL(new Blob([TF_FETCHER], {type: 'text/javascript'})));
+    tfWorker.onmessage = ({data}) => {
+      if (data.error) {
+        note.textContent = data.error;
+        return;
+      }
       try {
-        await pollTf();
+        applyTf(data.data);
       } catch (error) {
         note.textContent = String(error.message || error);
       }
-      setTimeout(tick, PERIOD_MS);
     };
     setInterval(pollDescription, 1000);
     await pollDescription();
-    tick();
     const render = () => {
+      tfWorker.postMessage(state.fixedFrame);
       drawStreams();
       controls.update();
       renderer.render(scene, camera);
