@@ -99,6 +99,15 @@ def test_rviz_page_shows_the_turtle_frames_moving(tmp_path: Path) -> None:
                     projected = page.evaluate('[window.rviz.project(0, 0, 0), window.rviz.project('
                                               '...window.rviz.frames.turtle1.translation)]')
                     screenshot(page, 'rviz_turtles')
+                    # The Fixed Frame box: the next answer is in turtle1 (the request in flight
+                    # for world is cancelled), where turtle1 is the origin and world is not.
+                    page.fill('#rviz-fixed-frame', 'turtle1')
+                    page.dispatch_event('#rviz-fixed-frame', 'change')
+                    page.wait_for_function(
+                        '() => window.rviz.frames.world && !window.rviz.frames.world.error'
+                        ' && window.rviz.frames.turtle1.translation.every((v) => v === 0)',
+                        timeout=10000)
+                    in_turtle1 = page.evaluate('window.rviz.frames')
                 finally:
                     browser.close()
         finally:
@@ -109,6 +118,9 @@ def test_rviz_page_shows_the_turtle_frames_moving(tmp_path: Path) -> None:
     turtle1 = state['frames']['turtle1']['translation']
     assert turtle1[:2] == pytest.approx([5.544445, 5.544445], abs=0.01)
     assert math.dist(first, state['frames']['turtle2']['translation']) > 0.1  # it drives
+    assert {p['fixed_frame'] for p in in_turtle1.values()} == {'turtle1'}
+    assert in_turtle1['world']['translation'][:2] == pytest.approx([-5.544445, -5.544445],
+                                                                   abs=0.01)
     # The file's TopDownOrtho view (48.6 px/m around the origin): turtle1 drawn where rviz2
     # draws it, 5.54 m right of and above the world origin.
     origin, seen = projected
