@@ -40,6 +40,9 @@
       topic: '/robot_description', alpha: 1}];
 
   const setStatus = (name, text) => {
+    // Unchanged: no DOM write (each TF answer sets the TF and RobotModel statuses again, and
+    // a write, even of the same text, makes the next frame redo style and layout).
+    if (state.status[name] === text) return;
     state.status[name] = text;
     const item = document.querySelector(`#rviz-displays li[data-name="${CSS.escape(name)}"] .status`);
     if (item) item.textContent = text;
