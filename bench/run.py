@@ -11,6 +11,8 @@ import argparse
 import json
 import time
 
+import cli_speed
+
 import bag
 import bag_stop
 import cpu
@@ -45,6 +47,7 @@ SUITE = {
     'tf2': lambda s, quick: tf2_lookup.run(s, seconds=0.5 if quick else tf2_lookup.SECONDS),
     'turtle_tf2_cpu': lambda s, quick: turtle_tf2_cpu.run(
         s, duration=8.0 if quick else turtle_tf2_cpu.DURATION_S),
+    'cli_speed': lambda s, quick: cli_speed.run(s, runs=2 if quick else cli_speed.RUNS),
 }
 
 

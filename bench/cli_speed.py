@@ -1,0 +1,292 @@
+"""`ros2` as a learner types it: median wall time of each command, ours next to a reference.
+
+With turtlesim up (`ros2 run turtlesim turtlesim_node --headless`), each command a learner
+types (node/topic/service/param/action/interface verbs, plus the first `ros2 node list` after
+`ros2 daemon stop`, daemon start included) runs once as a warm-up and then RUNS times; the
+median wall time is reported. The daemon already runs where the verb uses it.
+
+`--reference-ros2 PATH` names another `ros2` to run the same commands with, on the same
+domain (e.g. upstream ros2cli on the same rclpy): either its `ros2` executable or the prefix
+it is installed in. When the executable lives in `<prefix>/bin`, `<prefix>/bin`, its
+`lib/pythonX.Y/site-packages` and `<prefix>` go first on PATH, PYTHONPATH and
+AMENT_PREFIX_PATH. Ours and the reference run alternately, so that load hits both alike. The
+two daemons cannot collide: ours listens on a Unix socket, upstream's on TCP port
+11511 + ROS_DOMAIN_ID on localhost. The reference's daemon is stopped at the end with the
+reference's own `ros2 daemon stop`.
+
+Run alone: `scripts/ws python bench/cli_speed.py [--reference-ros2 PATH] [--runs N]`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import statistics
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ament_index_python.packages import get_package_prefix
+
+from common import Row, Session, session, verdict
+
+RUNS = 5
+TIMEOUT_S = 30.0
+TARGET_RATIO = 0.5
+READY_TIMEOUT_S = 30.0
+COLD = 'ros2 node list (after ros2 daemon stop; daemon start included)'
+
+# (shown as, argv after `ros2`, output varies from call to call)
+COMMANDS: list[tuple[str, list[str], bool]] = [
+    ('ros2 node list', ['node', 'list'], False),
+    ('ros2 node info /turtlesim', ['node', 'info', '/turtlesim'], False),
+    ('ros2 topic list', ['topic', 'list'], False),
+    ('ros2 topic info /turtle1/pose', ['topic', 'info', '/turtle1/pose'], False),
+    ('ros2 topic type /turtle1/pose', ['topic', 'type', '/turtle1/pose'], False),
+    ('ros2 service list', ['service', 'list'], False),
+    ('ros2 service type /clear', ['service', 'type', '/clear'], False),
+    ('ros2 param list /turtlesim', ['param', 'list', '/turtlesim'], False),
+    ('ros2 param get /turtlesim background_r', ['param', 'get', '/turtlesim', 'background_r'],
+     False),
+    ('ros2 param set /turtlesim background_r 100',
+     ['param', 'set', '/turtlesim', 'background_r', '100'], False),
+    ('ros2 topic echo --once /turtle1/pose', ['topic', 'echo', '--once', '/turtle1/pose'], True),
+    ('ros2 topic pub --once /turtle1/cmd_vel geometry_msgs/msg/Twist "{linear: {x: 0.1}}"',
+     ['topic', 'pub', '--once', '/turtle1/cmd_vel', 'geometry_msgs/msg/Twist',
+      '{linear: {x: 0.1}}'], True),
+    ('ros2 service call /clear std_srvs/srv/Empty',
+     ['service', 'call', '/clear', 'std_srvs/srv/Empty'], True),
+    ('ros2 action list', ['action', 'list'], False),
+    # The goal's theta alternates between calls (see _argv) so that the turtle always turns.
+    ('ros2 action send_goal /turtle1/rotate_absolute turtlesim/action/RotateAbsolute '
+     '"{theta: 1.0}"',
+     ['action', 'send_goal', '/turtle1/rotate_absolute', 'turtlesim/action/RotateAbsolute',
+      '{theta: 1.0}'], True),
+    ('ros2 interface show turtlesim/srv/Spawn', ['interface', 'show', 'turtlesim/srv/Spawn'],
+     False),
+]
+THETAS = ('{theta: 1.0}', '{theta: -1.0}')
+
+
+@dataclass
+class Cli:
+    """One `ros2` to measure: its executable and the environment it runs in."""
+
+    label: str
+    argv0: str
+    env: dict[str, str]
+    samples: dict[str, list[float]] = field(default_factory=dict)
+    outputs: dict[str, str] = field(default_factory=dict)
+    failures: dict[str, list[str]] = field(default_factory=dict)
+
+    def run(self, args: list[str]) -> tuple[float, subprocess.CompletedProcess | None]:
+        start = time.monotonic()
+        try:
+            result = subprocess.run([self.argv0, *args], env=self.env, capture_output=True,
+                                    text=True, timeout=TIMEOUT_S, stdin=subprocess.DEVNULL)
+        except subprocess.TimeoutExpired:
+            return time.monotonic() - start, None
+        return time.monotonic() - start, result
+
+    def measure(self, name: str, args: list[str], keep: bool) -> None:
+        elapsed, result = self.run(args)
+        if not keep:
+            return
+        self.samples.setdefault(name, []).append(elapsed)
+        if result is None:
+            self.failures.setdefault(name, []).append(f'timed out after {TIMEOUT_S:.0f} s')
+            return
+        self.outputs[name] = result.stdout
+        if result.returncode != 0:
+            self.failures.setdefault(name, []).append(
+                f'exit {result.returncode}: {(result.stderr or result.stdout).strip()[-300:]}')
+
+    def median_ms(self, name: str) -> float | None:
+        values = self.samples.get(name)
+        return statistics.median(values) * 1000 if values else None
+
+
+def _ours(env: dict[str, str]) -> Cli:
+    return Cli('ours', str(Path(get_package_prefix('ros2cli_lite')) / 'bin' / 'ros2'), env)
+
+
+def reference_cli(path: str, env: dict[str, str]) -> Cli:
+    """The reference `ros2`: an executable, or a prefix with bin/ros2 in it."""
+    given = Path(path).expanduser().resolve()
+    argv0 = given / 'bin' / 'ros2' if given.is_dir() else given
+    if not os.access(argv0, os.X_OK):
+        raise SystemExit(f'cli_speed: no executable ros2 at {argv0}')
+    env = dict(env)
+    prefix = argv0.parent.parent
+    if argv0.parent.name == 'bin':
+        sites = sorted(prefix.glob('lib/python3*/site-packages'))
+        if sites:
+            def first(var: str, value: Path) -> None:
+                env[var] = os.pathsep.join([str(value), *filter(None, [env.get(var, '')])])
+            first('PATH', argv0.parent)
+            first('PYTHONPATH', sites[-1])
+            first('AMENT_PREFIX_PATH', prefix)
+    return Cli('reference', str(argv0), env)
+
+
+def _argv(args: list[str], counter: list[int]) -> list[str]:
+    if args[:2] != ['action', 'send_goal']:
+        return args
+    counter[0] += 1
+    return [*args[:-1], THETAS[counter[0] % len(THETAS)]]
+
+
+def _wait_ready(cli: Cli) -> None:
+    """Start the daemon and wait until it lists turtlesim, its services and its action."""
+    cli.run(['daemon', 'start'])
+    checks = ((['node', 'list'], '/turtlesim'), (['service', 'list'], '/clear'),
+              (['topic', 'list'], '/turtle1/pose'),
+              (['action', 'list'], '/turtle1/rotate_absolute'))
+    deadline = time.monotonic() + READY_TIMEOUT_S
+    for args, expected in checks:
+        while True:
+            _, result = cli.run(args)
+            if result is not None and expected in result.stdout.split():
+                break
+            if time.monotonic() > deadline:
+                raise TimeoutError(f'{cli.label} `ros2 {" ".join(args)}` did not list '
+                                   f'{expected} within {READY_TIMEOUT_S:.0f} s')
+            time.sleep(0.2)
+
+
+def _masked(text: str) -> str:
+    text = re.sub(r'[0-9a-f]{8}-?[0-9a-f]{4}-?[0-9a-f]{4}-?[0-9a-f]{4}-?[0-9a-f]{12}', '<id>',
+                  text)
+    return re.sub(r'-?\d+(\.\d+)?(e[-+]?\d+)?', '#', text)
+
+
+def output_differences(ours: Cli, reference: Cli) -> list[str]:
+    """The commands whose (last) output differs, numbers masked where they vary by call."""
+    notes = []
+    for name, _, volatile in COMMANDS:
+        a, b = ours.outputs.get(name), reference.outputs.get(name)
+        if a is None or b is None:
+            continue
+        if volatile:
+            a, b = _masked(a), _masked(b)
+        if a.split() != b.split():
+            notes.append(f'{name}:\n  ours:      {a.strip()[:400]!r}\n'
+                         f'  reference: {b.strip()[:400]!r}')
+    a, b = ours.outputs.get(COLD, ''), reference.outputs.get(COLD, '')
+    for cli, text in ((ours, a), (reference, b)):
+        if '/turtlesim' not in text.split():
+            notes.append(f'{COLD}: {cli.label} did not list /turtlesim '
+                         f'in its last cold call ({text.strip()!r})')
+    return notes
+
+
+def measure(s: Session, reference: str | None, runs: int = RUNS) -> list[Cli]:
+    turtlesim = s.start_argv([_ours(s.env).argv0, 'run', 'turtlesim', 'turtlesim_node',
+                              '--headless'])
+    turtlesim.wait_for_output(r'Spawning turtle \[turtle1\]', timeout=30)
+    clis = [_ours(s.env)]
+    if reference:
+        clis.append(reference_cli(reference, s.env))
+    counter = [0]
+    try:
+        for cli in clis:
+            cli.run(['daemon', 'stop'])  # a stale daemon of an earlier run on this domain
+            _wait_ready(cli)
+        for name, args, _ in COMMANDS:
+            for run in range(runs + 1):  # run 0 is the warm-up
+                for cli in clis:
+                    cli.measure(name, _argv(args, counter), keep=run > 0)
+        for run in range(runs + 1):
+            for cli in clis:
+                cli.run(['daemon', 'stop'])
+                cli.measure(COLD, ['node', 'list'], keep=run > 0)
+    finally:
+        for cli in clis:
+            cli.run(['daemon', 'stop'])
+    return clis
+
+
+def _fmt(value: float | None) -> str:
+    return f'{value:.0f}' if value is not None else 'n/a'
+
+
+def table_lines(clis: list[Cli]) -> list[tuple[str, str, str, str, str, str]]:
+    ours = clis[0]
+    reference = clis[1] if len(clis) > 1 else None
+    lines = []
+    for name in [name for name, _, _ in COMMANDS] + [COLD]:
+        mine = ours.median_ms(name)
+        theirs = reference.median_ms(name) if reference else None
+        failed = name in ours.failures
+        if reference is None:
+            lines.append((name, _fmt(mine), 'reference: not given', '', f'<= {TARGET_RATIO}x',
+                          'FAILED' if failed else ''))
+            continue
+        ratio = mine / theirs if mine is not None and theirs else None
+        state = 'FAILED' if failed else verdict(ratio is not None and ratio <= TARGET_RATIO)
+        if name in reference.failures:
+            state += ' (reference failed)'
+        lines.append((name, _fmt(mine), _fmt(theirs),
+                      f'{ratio:.2f}x' if ratio is not None else 'n/a', f'<= {TARGET_RATIO}x',
+                      state))
+    return lines
+
+
+def run(s: Session, reference: str | None = None, runs: int = RUNS) -> tuple[list[Row], dict]:
+    reference = reference or os.environ.get('CLI_SPEED_REFERENCE_ROS2') or None
+    clis = measure(s, reference, runs)
+    rows = []
+    for name, mine, theirs, ratio, target, state in table_lines(clis):
+        value = f'{mine} ms' + (f' (reference {theirs} ms, {ratio})' if ratio else
+                                ' (reference: not given)')
+        rows.append(Row('cli_speed', f'`{name}`, median of {runs}', value, target, state))
+    data = {'cli_speed': {cli.label: {'argv0': cli.argv0, 'samples_s': cli.samples,
+                                      'failures': cli.failures} for cli in clis}}
+    return rows, data
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument('--reference-ros2', metavar='PATH',
+                        help='a reference `ros2` executable, or the prefix it is installed in')
+    parser.add_argument('--runs', type=int, default=RUNS, help='timed runs per command')
+    options = parser.parse_args()
+    load_before = os.getloadavg()
+    with session('cli_speed') as current:
+        print(f'cli_speed: domain {current.domain}, load average {load_before[0]:.2f} '
+              f'{load_before[1]:.2f} {load_before[2]:.2f}', flush=True)
+        clis = measure(current, options.reference_ros2, max(1, options.runs))
+    load_after = os.getloadavg()
+    header = ('command', 'ours (ms)', 'reference (ms)', 'ratio', 'target', 'verdict')
+    lines = [header, *table_lines(clis)]
+    widths = [max(len(line[i]) for line in lines) for i in range(len(header))]
+    print()
+    for index, line in enumerate(lines):
+        cells = (cell.ljust(width) for cell, width in zip(line, widths, strict=True))
+        print(' | '.join(cells).rstrip())
+        if index == 0:
+            print('-+-'.join('-' * width for width in widths))
+    print(f'\nmedians of {options.runs} runs after one warm-up; ours: {clis[0].argv0}'
+          + (f'; reference: {clis[1].argv0}' if len(clis) > 1 else ''))
+    print(f'load average: before {load_before[0]:.2f}, after {load_after[0]:.2f} '
+          f'(1 min), {os.cpu_count()} cores')
+    print('samples (ms), in order:')
+    for name in [name for name, _, _ in COMMANDS] + [COLD]:
+        spread = '; '.join(f'{cli.label} ' + ' '.join(f'{v * 1000:.0f}' for v in
+                                                      cli.samples.get(name, []))
+                           for cli in clis)
+        print(f'  {name}: {spread}')
+    for cli in clis:
+        for name, messages in cli.failures.items():
+            print(f'{cli.label} failed `{name}` {len(messages)}x: {messages[-1]}')
+    if len(clis) > 1:
+        for note in output_differences(*clis):
+            print(f'output differs: {note}')
+    sys.exit(1 if clis[0].failures else 0)
+
+
+if __name__ == '__main__':
+    main()
