@@ -175,3 +175,32 @@ def test_other_settings_get_their_own_daemon(ros_env, node):
     direct = says(ros_env, 'node', 'list', '-a', '--no-daemon').splitlines()
     assert f'/_ros2cli_{direct[0].rsplit("_", 1)[1]}' == direct[0]
     assert says(ros_env, 'daemon', 'status') == 'The daemon is not running\n'
+
+
+def test_one_shot_verbs_run_in_the_daemon_and_stop_with_their_cli(ros_env, node, launch):
+    """With a daemon running, `param get` and `topic echo --once` run in it (the CLI process
+    never loads rclpy); with another environment the CLI runs them itself; a CLI killed while
+    its verb waits takes the verb's node with it."""
+    says(ros_env, 'daemon', 'start')
+    assert ros2(ros_env, 'node', 'list').stdout == '/cli_test_node\n'  # the daemon is ready
+    code = ('import sys\nfrom ros2cli_lite.cli import main\n'
+            'main(["param", "get", "/cli_test_node", "speed"])\n'
+            'main(["topic", "echo", "--once", "--field", "x", "/pose"])\n'
+            'print("rclpy" in sys.modules)')
+    result = subprocess.run([sys.executable, '-c', code], env=ros_env, capture_output=True,
+                            text=True, timeout=60)
+    assert result.stdout == 'Integer value is: 69\n1.5\n---\nFalse\n', result.stderr
+    elsewhere = dict(ros_env, PYTHONPATH=os.pathsep.join([os.devnull,
+                                                          ros_env.get('PYTHONPATH', '')]))
+    result = subprocess.run([sys.executable, '-c', code], env=elsewhere, capture_output=True,
+                            text=True, timeout=60)
+    assert result.stdout == 'Integer value is: 69\n1.5\n---\nTrue\n', result.stderr
+
+    waiting = launch(argv=['ros2', 'topic', 'echo', '--once', '/nobody', 'std_msgs/msg/String'])
+    verb_node = f'/_ros2cli_{waiting.popen.pid}'
+    wait_for(lambda: verb_node in ros2(ros_env, 'node', 'list', '-a').stdout, 20,
+             'the verb node in the daemon')
+    os.killpg(waiting.popen.pid, signal.SIGKILL)
+    wait_for(lambda: verb_node not in ros2(ros_env, 'node', 'list', '-a').stdout, 10,
+             'the verb node gone once its CLI was killed')
+    assert daemon_pid(ros_env) is not None  # the daemon itself goes on

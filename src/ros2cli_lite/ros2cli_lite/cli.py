@@ -66,6 +66,15 @@ def main(argv: list[str] | None = None) -> int | str:
 
 
 def _dispatch(argv: list[str]) -> int | str:
+    return _run(argv, daemon_may_run=True)
+
+
+def run_here(argv: list[str]) -> int | str:
+    """Parse and run in this process: the daemon's entry for the verbs it runs (proxy.py)."""
+    return _run(argv, daemon_may_run=False)
+
+
+def _run(argv: list[str], daemon_may_run: bool) -> int | str:
     if argv and argv[0] == 'run':
         # `ros2 run` passes everything after the executable through untouched.
         from ros2cli_lite.command import run
@@ -81,7 +90,19 @@ def _dispatch(argv: list[str]) -> int | str:
     if func is None:
         parser.parse_args([args._command, '--help'])
         return 0
+    if daemon_may_run and _runs_in_daemon(func, args):
+        from ros2cli_lite.daemon.proxy import run_in_daemon
+        code = run_in_daemon(argv)
+        if code is not None:
+            return code
     return _guard(lambda: func(args))
+
+
+def _runs_in_daemon(func, args: argparse.Namespace) -> bool:
+    """Whether the verb's module lets the daemon run it with these arguments (a one-shot verb
+    that reads no standard input and no relative path), and --no-daemon was not given."""
+    check = getattr(sys.modules.get(func.__module__), 'runs_in_daemon', None)
+    return check is not None and not getattr(args, 'no_daemon', False) and bool(check(args))
 
 
 def _guard(call) -> int:

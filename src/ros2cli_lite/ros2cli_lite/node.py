@@ -27,10 +27,17 @@ def cli_node(name: str | None = None, discover: bool = True,
     """
     import rclpy
 
-    node_name = name or f'{NODE_NAME_PREFIX}_{os.getpid()}'
-    context, node = make_node(node_name)
+    from ros2cli_lite.daemon.proxy import session
+    running_for = session()
+    node_name = name or f'{NODE_NAME_PREFIX}_{running_for.pid if running_for else os.getpid()}'
+    if running_for is not None:
+        # In the daemon, for a CLI: a node of the daemon's participant, which knows the graph.
+        context = running_for.context
+        node = _create_node(node_name, context)
+    else:
+        context, node = make_node(node_name)
     try:
-        if discover:
+        if discover and running_for is None:
             bound = 1.8 if spin_time is None else min(1.8, spin_time)
             context, node = _meet_graph(context, node, node_name, bound=bound)
         yield node
@@ -42,22 +49,28 @@ def cli_node(name: str | None = None, discover: bool = True,
         if executor is not None:
             executor.shutdown(timeout_sec=1.0)
         node.destroy_node()
-        rclpy.try_shutdown(context=context)
+        if running_for is None:
+            rclpy.try_shutdown(context=context)
 
 
 def make_node(name: str) -> tuple[Any, Any]:
     """(a fresh context, a node in it offering no services): the CLI's and the daemon's."""
     import rclpy
     from rclpy.context import Context
-    from rclpy.parameter import Parameter
 
     context = Context()
     rclpy.init(args=[], context=context)
+    return context, _create_node(name, context)
+
+
+def _create_node(name: str, context: Any) -> Any:
+    import rclpy
+    from rclpy.parameter import Parameter
+
     # No parameter or type-description services: the CLI node offers nothing to the graph.
-    node = rclpy.create_node(
+    return rclpy.create_node(
         name, context=context, start_parameter_services=False,
         parameter_overrides=[Parameter('start_type_description_service', value=False)])
-    return context, node
 
 
 def _meet_graph(context: Any, node: Any, name: str, patience: float = 0.4,
@@ -91,12 +104,22 @@ def _meet_graph(context: Any, node: Any, name: str, patience: float = 0.4,
 
 def spin_once(node: Any, timeout: float) -> None:
     """Process pending callbacks of `node` for at most `timeout` seconds."""
+    stop_if_cli_left()
     executor = getattr(node, '_cli_executor', None)
     if executor is None:
         executor = _cli_executor_class()(context=node.context)
         executor.add_node(node)
         node._cli_executor = executor
     executor.spin_once(timeout_sec=timeout)
+
+
+def stop_if_cli_left() -> None:
+    """In the daemon, a KeyboardInterrupt once the CLI it runs the verb for has gone: its
+    Ctrl-C ends the verb there too. Called by every wait of a verb."""
+    from ros2cli_lite.daemon.proxy import session
+    running_for = session()
+    if running_for is not None and running_for.take_interrupt():
+        raise KeyboardInterrupt
 
 
 def _cli_executor_class() -> type:
@@ -136,8 +159,11 @@ def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: f
     just not be discovered yet (a loaded machine can take that long); a verb passes its
     --spin-time. Returns whether `ready()` held.
     """
+    from ros2cli_lite.daemon.proxy import session
     if bound is None:
         bound = 2.0 if ready is None else 4.0
+    if session() is not None:
+        settle = 0.0  # the daemon's participant: its graph settled long ago
     start = time.monotonic()
     own = node.get_fully_qualified_name()
     last = None
@@ -155,6 +181,7 @@ def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: f
             return True
         if now - start >= bound:
             return ok
+        stop_if_cli_left()
         time.sleep(0.02)
 
 
@@ -171,5 +198,6 @@ def wait_until(predicate: Callable[[], bool], timeout: float, step: float = 0.02
     while not predicate():
         if time.monotonic() >= deadline:
             return False
+        stop_if_cli_left()
         time.sleep(step)
     return True

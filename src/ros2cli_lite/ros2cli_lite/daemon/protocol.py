@@ -14,10 +14,10 @@ from pathlib import Path
 from typing import Any
 from zlib import adler32, crc32
 
-# Bump when requests or answers change shape; the source files' stamps are added to it so a
-# daemon running older code (an edited workspace) is replaced too.
-PROTOCOL = 1
-_SOURCES = ('protocol.py', 'server.py', '../graph.py')
+# Bump when requests or answers change shape; the package's source files' stamps are added
+# to it so a daemon running older code (an edited workspace) is replaced too: it also runs
+# verbs for the CLI (proxy.py), so every module counts.
+PROTOCOL = 2
 # The settings that decide which DDS graph a process sees: a daemon serves exactly one set.
 SETTINGS = ('ROS_DOMAIN_ID', 'ROS_AUTOMATIC_DISCOVERY_RANGE', 'ROS_STATIC_PEERS',
             'RMW_IMPLEMENTATION', 'ROS_LOCALHOST_ONLY')
@@ -29,14 +29,14 @@ class ProtocolError(Exception):
 
 
 def version() -> str:
-    here = Path(__file__).parent
+    package = Path(__file__).resolve().parent.parent
     stamps = []
-    for name in _SOURCES:
-        try:
-            info = (here / name).stat()
-        except OSError:
-            continue
-        stamps.append(f'{info.st_mtime_ns}:{info.st_size}')
+    for directory, subdirectories, files in os.walk(package):
+        subdirectories[:] = sorted(d for d in subdirectories if d != '__pycache__')
+        for name in sorted(files):
+            if name.endswith('.py'):
+                info = os.stat(os.path.join(directory, name))
+                stamps.append(f'{name}:{info.st_mtime_ns}:{info.st_size}')
     return f'{PROTOCOL}-{_digest(";".join(stamps))}'
 
 

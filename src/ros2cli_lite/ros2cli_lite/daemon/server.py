@@ -2,8 +2,9 @@
 
 One hidden rclpy node keeps the DDS graph cache warm; a threaded Unix-socket server answers
 each request from it (see protocol.py). The first answer waits until discovery has settled;
-later ones read the live cache. Exits when stopped, on SIGTERM/SIGINT, or after IDLE_EXIT
-seconds without a request.
+later ones read the live cache. One-shot verbs run here for the CLI, in the same participant
+(proxy.py). Exits when stopped, on SIGTERM/SIGINT, or after IDLE_EXIT seconds without a
+request.
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ros2cli_lite.daemon import protocol
+from ros2cli_lite.daemon import protocol, proxy
 
 IDLE_EXIT = 2 * 60 * 60.0      # as ros2cli's daemon: two hours without a request
 READY_BOUND = 15.0             # a request waits at most this long for the first settling
@@ -113,6 +114,12 @@ class GraphCache:
         from ros2cli_lite.graph import endpoint_texts
         return self._with_node(lambda node: endpoint_texts(node, topic))
 
+    def context(self) -> Any:
+        """The participant's context once discovery has settled, else None (not waited for:
+        until then the CLI runs its verbs itself)."""
+        with self._lock:
+            return self._context if self._ready.is_set() else None
+
 
 class _Handler(socketserver.StreamRequestHandler):
     server: DaemonServer
@@ -121,7 +128,12 @@ class _Handler(socketserver.StreamRequestHandler):
         self.connection.settimeout(5.0)
         try:
             line = self.rfile.readline(protocol.MAX_MESSAGE)
-            reply = self.server.answer(protocol.decode(line))
+            request = protocol.decode(line)
+            if request.get('op') == 'run':
+                self.connection.settimeout(None)
+                self.server.run_verb(request, self.connection, self.wfile)
+                return
+            reply = self.server.answer(request)
         except (protocol.ProtocolError, OSError) as error:
             reply = {'ok': False, 'error': f'bad request: {error}'}
         except Exception as error:  # answer with the reason rather than a dropped connection
@@ -141,6 +153,7 @@ class DaemonServer(socketserver.ThreadingUnixStreamServer):
     def __init__(self, path: Path, cache: GraphCache) -> None:
         self.version = protocol.version()
         self.cache = cache
+        self.loaded = proxy.LoadedCode()
         self.last_request = time.monotonic()
         old_umask = os.umask(0o177)  # the socket is created 0600: only its user may connect
         try:
@@ -167,6 +180,44 @@ class DaemonServer(socketserver.ThreadingUnixStreamServer):
         return {'ok': False, 'error': f'unknown request {op!r}'}
 
 
+    def run_verb(self, request: dict[str, Any], connection: Any, output: Any) -> None:
+        """Run a one-shot verb for the CLI (proxy.py), streaming its output; or decline with
+        one line, and the CLI runs it itself."""
+        self.last_request = time.monotonic()
+        context = self.cache.context()
+        reason = ('version' if request.get('version') != self.version else
+                  'environment' if request.get('environment') != proxy.environment() else
+                  'not ready' if context is None else
+                  'stale' if self.loaded.changed() else None)
+        if reason is not None:
+            output.write(protocol.encode({'declined': reason}))
+            if reason == 'stale':  # the next request starts a daemon on the new code
+                threading.Thread(target=self.shutdown, daemon=True).start()
+            return
+        sending = threading.Lock()
+        cancelled = threading.Event()
+
+        def send(kind: str, text: str) -> None:
+            with sending:
+                try:
+                    output.write(protocol.encode({kind: text}))
+                    output.flush()
+                except OSError:
+                    cancelled.set()
+
+        def watch_cli() -> None:  # the CLI sends nothing more: end of stream means it left
+            try:
+                connection.recv(1)
+            except OSError:
+                pass
+            cancelled.set()
+        threading.Thread(target=watch_cli, daemon=True).start()
+        code = proxy.run([str(word) for word in request.get('argv', [])],
+                         proxy.Session(context, int(request.get('pid', 0)), send, cancelled))
+        self.loaded.changed()  # stamp what the verb loaded, to notice a later rebuild
+        send('exit', str(code))
+
+
 def _exit_when_idle(server: DaemonServer, stopping: threading.Event) -> None:
     while not stopping.wait(10.0):
         if time.monotonic() - server.last_request > IDLE_EXIT:
@@ -188,6 +239,7 @@ def main() -> int:
         pass
     cache = GraphCache()
     server = DaemonServer(path, cache)
+    proxy.install_streams()
     stopping = threading.Event()
 
     def on_signal(signum: int, frame: Any) -> None:

@@ -34,6 +34,12 @@ STATUS_NAMES = {0: 'UNKNOWN', 1: 'ACCEPTED', 2: 'EXECUTING', 3: 'CANCELING', 4: 
                 5: 'CANCELED', 6: 'ABORTED'}
 
 
+def runs_in_daemon(args: argparse.Namespace) -> bool:
+    """One goal to its result (feedback streams as it comes), given on the command line (not
+    --stdin): the daemon may run it for the CLI (daemon/proxy.py)."""
+    return not args.stdin
+
+
 def main(args: argparse.Namespace) -> int | str:
     from rclpy.action import ActionClient
 
@@ -86,9 +92,10 @@ def _run_goal(node, client, goal, args: argparse.Namespace) -> int | str:
 
 
 def _wait_for_server(client, timeout: float) -> bool:
+    from ros2cli_lite.node import stop_if_cli_left
     if timeout <= 0:
         while not client.wait_for_server(timeout_sec=1.0):
-            pass
+            stop_if_cli_left()
         return True
     return client.wait_for_server(timeout_sec=timeout)
 

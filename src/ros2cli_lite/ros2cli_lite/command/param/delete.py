@@ -15,6 +15,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_timeout(parser)
 
 
+def runs_in_daemon(_args: argparse.Namespace) -> bool:
+    """One exchange with the node: the daemon may run it for the CLI (daemon/proxy.py)."""
+    return True
+
+
 def main(args: argparse.Namespace) -> int | str:
     from rcl_interfaces.msg import Parameter, ParameterValue
     from rcl_interfaces.srv import SetParameters

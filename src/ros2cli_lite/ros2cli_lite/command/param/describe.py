@@ -14,6 +14,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('parameter_names', nargs='+', help='Names of the parameters')
 
 
+def runs_in_daemon(_args: argparse.Namespace) -> bool:
+    """One exchange with the node: the daemon may run it for the CLI (daemon/proxy.py)."""
+    return True
+
+
 def main(args: argparse.Namespace) -> int | str:
     from rcl_interfaces.srv import DescribeParameters
 

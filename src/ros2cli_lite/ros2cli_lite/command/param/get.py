@@ -25,6 +25,11 @@ LABELS = {
 }
 
 
+def runs_in_daemon(_args: argparse.Namespace) -> bool:
+    """One exchange with the node: the daemon may run it for the CLI (daemon/proxy.py)."""
+    return True
+
+
 def main(args: argparse.Namespace) -> int | str:
     from rcl_interfaces.srv import GetParameters
 

@@ -17,6 +17,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='Print parameter types with parameter names')
 
 
+def runs_in_daemon(_args: argparse.Namespace) -> bool:
+    """One exchange with the node: the daemon may run it for the CLI (daemon/proxy.py)."""
+    return True
+
+
 def main(args: argparse.Namespace) -> int | str:
     from ros2cli_lite.graph import graph_source
     if args.node_name:

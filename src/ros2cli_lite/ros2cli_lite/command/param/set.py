@@ -47,6 +47,11 @@ def parameter_value(text: str):
     return value
 
 
+def runs_in_daemon(_args: argparse.Namespace) -> bool:
+    """One exchange with the node: the daemon may run it for the CLI (daemon/proxy.py)."""
+    return True
+
+
 def main(args: argparse.Namespace) -> int | str:
     from rcl_interfaces.msg import Parameter
     from rcl_interfaces.srv import SetParameters

@@ -27,6 +27,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         '(default: %(default)s; 0 or less waits forever)')
 
 
+def runs_in_daemon(args: argparse.Namespace) -> bool:
+    """One call (no --rate), its request given on the command line (not --stdin): the daemon may
+    run it for the CLI (daemon/proxy.py)."""
+    return args.rate is None and not args.stdin
+
+
 def main(args: argparse.Namespace) -> int | str:
     import sys
 
@@ -71,6 +77,7 @@ def main(args: argparse.Namespace) -> int | str:
 
 def _wait_for_service(client, started: float, timeout: float) -> bool:
     """Quietly give discovery three seconds, then say that we wait (as ros2cli does), bounded."""
+    from ros2cli_lite.node import stop_if_cli_left
     forever = timeout <= 0
     grace = started + (3.0 if forever else min(3.0, timeout))
     if client.wait_for_service(timeout_sec=max(0.0, grace - time.monotonic())):
@@ -78,6 +85,6 @@ def _wait_for_service(client, started: float, timeout: float) -> bool:
     print('waiting for service to become available...', flush=True)
     if forever:
         while not client.wait_for_service(timeout_sec=1.0):
-            pass
+            stop_if_cli_left()
         return True
     return client.wait_for_service(timeout_sec=max(0.0, started + timeout - time.monotonic()))

@@ -39,6 +39,12 @@ def _echo_qos(node, topic: str):
     return qos
 
 
+def runs_in_daemon(args: argparse.Namespace) -> bool:
+    """With --once it prints one message and exits: the daemon may run it for the CLI
+    (daemon/proxy.py)."""
+    return args.once
+
+
 def main(args: argparse.Namespace) -> int | str:
     from ros2cli_lite.api import import_type
     from ros2cli_lite.convert import message_to_yaml, to_yaml

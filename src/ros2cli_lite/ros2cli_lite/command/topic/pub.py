@@ -34,6 +34,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('-n', '--node-name', help='Name of the created publishing node')
 
 
+def runs_in_daemon(args: argparse.Namespace) -> bool:
+    """With --once or --times it publishes a fixed number of messages and exits: the daemon may run
+    it for the CLI (daemon/proxy.py)."""
+    return bool(args.once or args.times)
+
+
 def main(args: argparse.Namespace) -> int | str:
     from rclpy.qos import QoSProfile
 
