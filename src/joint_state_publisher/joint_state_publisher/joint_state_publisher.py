@@ -19,6 +19,7 @@ import signal
 import sys
 import threading
 import xml.etree.ElementTree as ET
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import rclpy
@@ -257,7 +258,10 @@ class JointStatePublisher(Node):
                 joint.position, joint.forward = joint.lower, True
 
 
-def main(args: list[str] | None = None) -> None:
+def main(args: list[str] | None = None,
+         setup: Callable[[JointStatePublisher], None] | None = None) -> None:
+    """Run the node until Ctrl-C; `setup` adds to it first (joint_state_publisher_gui's
+    slider topic and page)."""
     stop = threading.Event()
     rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     # Ctrl-C sets a flag; the loop ends within 0.1 s (exit 0, no traceback).
@@ -268,6 +272,8 @@ def main(args: list[str] | None = None) -> None:
     node = None
     try:
         node = JointStatePublisher(argv[0] if argv else None)
+        if setup is not None:
+            setup(node)
         executor.add_node(node)
         while not stop.is_set() and rclpy.ok():
             executor.spin_once(timeout_sec=0.1)

@@ -8,16 +8,13 @@ At start it prints the page's URL (and opens the browser when there is one), as 
 
 from __future__ import annotations
 
-import signal
 import sys
 import threading
 
-import rclpy
-from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
-from rclpy.signals import SignalHandlerOptions
 from sensor_msgs.msg import JointState
 
 from joint_state_publisher.joint_state_publisher import JointStatePublisher
+from joint_state_publisher.joint_state_publisher import main as run
 
 SLIDERS_TOPIC = '/joint_state_publisher_gui/sliders'
 
@@ -36,28 +33,14 @@ def open_page() -> None:
     _open_browser(url)
 
 
+def add_sliders(node: JointStatePublisher) -> None:
+    """The page's slider positions, taken like a source_list topic; the page opened."""
+    node.create_subscription(JointState, SLIDERS_TOPIC, node.on_source, 10)
+    threading.Thread(target=open_page, daemon=True).start()
+
+
 def main(args: list[str] | None = None) -> None:
-    stop = threading.Event()
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda _signum, _frame: stop.set())
-    argv = rclpy.utilities.remove_ros_args(args or sys.argv)[1:]
-    executor = SingleThreadedExecutor()
-    node = None
-    try:
-        node = JointStatePublisher(argv[0] if argv else None)
-        node.create_subscription(JointState, SLIDERS_TOPIC, node.on_source, 10)
-        executor.add_node(node)
-        threading.Thread(target=open_page, daemon=True).start()
-        while not stop.is_set() and rclpy.ok():
-            executor.spin_once(timeout_sec=0.1)
-    except ExternalShutdownException:
-        pass
-    finally:
-        executor.shutdown(timeout_sec=1.0)
-        if node is not None:
-            node.destroy_node()
-        rclpy.try_shutdown()
+    run(args, setup=add_sliders)
 
 
 if __name__ == '__main__':
