@@ -3,7 +3,7 @@
 The fresh clone runs twice: with the machine's caches as they are (pip's wheels, and ccache's
 objects from an earlier build of any clone: the demo-ready figure a returning learner sees),
 and with an empty ccache (every interface package compiled again). `--cold` adds a run with
-empty pip and ccache caches too (everything downloaded: minutes, and the network).
+empty pip, uv, npm and ccache caches (everything downloaded and compiled).
 
     scripts/ws python bench/setup_time.py [--cold]
 """
@@ -58,9 +58,9 @@ def run(_session=None, cold: bool = False) -> tuple[list[Row], dict]:
         data = {'fresh_s': warm, 'fresh_empty_ccache_s': no_ccache, 'rerun_s': rerun}
         if cold:
             empty = {'CCACHE_DIR': str(scratch / 'cc2'), 'PIP_CACHE_DIR': str(scratch / 'pip'),
-                     'npm_config_cache': str(scratch / 'npm')}
+                     'UV_CACHE_DIR': str(scratch / 'uv'), 'npm_config_cache': str(scratch / 'npm')}
             data['cold_s'], _ = _fresh_clone(scratch, 'cold', empty)
-            rows.append(Row('setup', 'fresh clone, empty pip, npm and ccache caches',
+            rows.append(Row('setup', 'fresh clone, empty pip, uv, npm and ccache caches',
                             f'{data["cold_s"]:.1f} s', f'<= {COLD_LIMIT_S:.0f} s',
                             verdict(data['cold_s'] <= COLD_LIMIT_S)))
     return rows, {'setup': data}
@@ -71,5 +71,5 @@ if __name__ == '__main__':
 
     from report import table
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument('--cold', action='store_true', help='also with empty pip/npm caches')
+    parser.add_argument('--cold', action='store_true', help='also with empty pip/uv/npm/ccache')
     print(table(run(cold=parser.parse_args().cold)[0]))
