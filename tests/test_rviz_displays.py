@@ -12,6 +12,8 @@ import json
 import math
 import statistics
 import urllib.request
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -24,6 +26,29 @@ from support import Background, wait_until
 pytestmark = pytest.mark.skipif(chromium_missing() is not None, reason=str(chromium_missing()))
 
 VIEWPORT = {'width': 1280, 'height': 1000}
+
+
+@contextmanager
+def rviz_page(ros_env: dict[str, str], probe: Any, config: Path, tmp_path: Path,
+              before_browser: Callable[[Any], None] | None = None) -> Iterator[tuple[Any, Any]]:
+    """(rqt's server, its RViz page on `config` in headless Chromium), while a Background
+    thread spins `probe`; `before_browser(server)` runs before the browser starts. All stopped
+    afterwards."""
+    from playwright.sync_api import sync_playwright
+    server, _ = start_rqt(ros_env, tmp_path / 'state')
+    try:
+        with sync_playwright() as playwright, Background(probe):
+            if before_browser is not None:
+                before_browser(server)
+            browser = launch_browser(playwright)
+            try:
+                page = browser.new_page(viewport=VIEWPORT)
+                page.goto(server.page_url('/rviz', config=str(config)))
+                yield server, page
+            finally:
+                browser.close()
+    finally:
+        server.stop()
 
 
 def write_rviz(path: Path, fixed_frame: str, displays: list[dict], view: dict) -> Path:
@@ -109,7 +134,6 @@ IMAGES = {
 
 def test_pointcloud2_and_image_displays_draw_what_was_published(ros_env, probe, tmp_path):
     from PIL import Image as PILImage
-    from playwright.sync_api import sync_playwright
     from sensor_msgs.msg import Image, PointCloud2
 
     orange = (255 << 16) | (160 << 8)
@@ -134,34 +158,24 @@ def test_pointcloud2_and_image_displays_draw_what_was_published(ros_env, probe, 
     publishers += [(probe.node.create_publisher(Image, t, 5), m) for t, m in images.items()]
     # As a sensor does: every message again at 5 Hz (the page subscribes when it opens).
     probe.node.create_timer(0.2, lambda: [pub.publish(msg) for pub, msg in publishers])
-    server, _ = start_rqt(ros_env, tmp_path / 'state')
-    try:
-        with sync_playwright() as playwright, Background(probe):
-            browser = launch_browser(playwright)
-            try:
-                page = browser.new_page(viewport=VIEWPORT)
-                page.goto(server.page_url('/rviz', config=str(config)))
-                page.wait_for_function(
-                    '''() => window.rviz && window.rviz.ready
-                        && Object.values(window.rviz.clouds).every((c) => c.drawn > 0)
-                        && Object.values(window.rviz.images).length === 4
-                        && Object.values(window.rviz.images).every((i) => i.drawn > 0)''',
-                    timeout=40000)
-                page.wait_for_timeout(300)  # a few animation frames with the clouds drawn
-                state = page.evaluate('window.rviz')
-                at = page.evaluate('[[2, 0], [-2, 0], [0, 2], [0, -2.5]].map(([x, y]) => '
-                                   'window.rviz.project(x, y, 0))')
-                drawn = page.evaluate('''() => Object.fromEntries([...document.querySelectorAll(
-                    'canvas.rviz-image')].map((c) => [c.dataset.name, [
-                    Array.from(c.getContext('2d').getImageData(5, 15, 1, 1).data),
-                    Array.from(c.getContext('2d').getImageData(35, 15, 1, 1).data)]]))''')
-                boxes = {e: page.locator(f'canvas.rviz-image[data-name="Image {e}"]')
-                         .bounding_box() for e in IMAGES}
-                shot = screenshot(page, 'rviz_cloud_image')
-            finally:
-                browser.close()
-    finally:
-        server.stop()
+    with rviz_page(ros_env, probe, config, tmp_path) as (_server, page):
+        page.wait_for_function(
+            '''() => window.rviz && window.rviz.ready
+                && Object.values(window.rviz.clouds).every((c) => c.drawn > 0)
+                && Object.values(window.rviz.images).length === 4
+                && Object.values(window.rviz.images).every((i) => i.drawn > 0)''',
+            timeout=40000)
+        page.wait_for_timeout(300)  # a few animation frames with the clouds drawn
+        state = page.evaluate('window.rviz')
+        at = page.evaluate('[[2, 0], [-2, 0], [0, 2], [0, -2.5]].map(([x, y]) => '
+                           'window.rviz.project(x, y, 0))')
+        drawn = page.evaluate('''() => Object.fromEntries([...document.querySelectorAll(
+            'canvas.rviz-image')].map((c) => [c.dataset.name, [
+            Array.from(c.getContext('2d').getImageData(5, 15, 1, 1).data),
+            Array.from(c.getContext('2d').getImageData(35, 15, 1, 1).data)]]))''')
+        boxes = {e: page.locator(f'canvas.rviz-image[data-name="Image {e}"]')
+                 .bounding_box() for e in IMAGES}
+        shot = screenshot(page, 'rviz_cloud_image')
     status = state['status']
     assert all(status[n] == 'OK' for n in ['RGB cloud', 'Intensity cloud']), status
     assert state['clouds']['RGB cloud']['points'] == 2500  # the 10 NaN points dropped
@@ -201,57 +215,50 @@ def yaw_of(q: Any) -> float:
 def test_tool_belt_publishes_poses_and_points_where_the_user_clicks(ros_env, probe, tmp_path):
     from geometry_msgs.msg import PointStamped, PoseStamped, PoseWithCovarianceStamped
     from PIL import Image as PILImage
-    from playwright.sync_api import sync_playwright
 
     initial = probe.collect(PoseWithCovarianceStamped, '/initialpose')
     goals = probe.collect(PoseStamped, '/goal_pose')
     points = probe.collect(PointStamped, '/clicked_point')
     config = write_rviz(tmp_path / 'tools.rviz', 'odom', [display('Grid', 'Grid')], {
         'Class': 'rviz_default_plugins/Orbit', 'Distance': 10, 'Pitch': 0.9, 'Yaw': 0.5})
-    server, _ = start_rqt(ros_env, tmp_path / 'state')
-    try:
-        with sync_playwright() as playwright, Background(probe):
-            # The server's node has seen the probe's subscriptions: what it publishes arrives.
-            wait_until(lambda: {'/initialpose', '/goal_pose', '/clicked_point'}
-                       <= graph_topics(server), 20, "the probe's subscriptions in the graph")
-            browser = launch_browser(playwright)
-            try:
-                page = browser.new_page(viewport=VIEWPORT)
-                page.goto(server.page_url('/rviz', config=str(config)))
-                page.wait_for_function('() => window.rviz && window.rviz.ready', timeout=40000)
 
-                def drag(tool: str, start: tuple[float, float], end: tuple[float, float],
-                         shot: str | None = None) -> None:
-                    page.click(f'#rviz-tool-{tool}')
-                    a = page.evaluate('([x, y]) => window.rviz.project(x, y, 0)', list(start))
-                    b = page.evaluate('([x, y]) => window.rviz.project(x, y, 0)', list(end))
-                    page.mouse.move(*a)
-                    page.mouse.down()
-                    page.mouse.move(*b, steps=6)
-                    if shot:
-                        page.wait_for_timeout(100)  # animation frames with the arrow
-                        screenshot(page, shot)
-                    page.mouse.up()
+    def subscriptions_seen(server) -> None:
+        # The server's node has seen the probe's subscriptions: what it publishes arrives.
+        wait_until(lambda: {'/initialpose', '/goal_pose', '/clicked_point'}
+                   <= graph_topics(server), 20, "the probe's subscriptions in the graph")
 
-                # 2D Pose Estimate: press at (1, 1), drag towards (2, 2): yaw 45 degrees.
-                drag('initialpose', (1.0, 1.0), (2.0, 2.0))
-                wait_until(lambda: initial, 10, 'a message on /initialpose')
-                assert page.evaluate('window.rviz.tool') == 'interact'
-                # 2D Goal Pose: at (-1, 2) towards (-1, 3): yaw 90 degrees; the arrow shows.
-                drag('goal', (-1.0, 2.0), (-1.0, 3.0), shot='rviz_tools')
-                wait_until(lambda: goals, 10, 'a message on /goal_pose')
-                arrow_at = page.evaluate('window.rviz.project(-1, 2.5, 0)')
-                # Publish Point: one click at (0.5, -1.5).
-                page.click('#rviz-tool-point')
-                page.mouse.click(*page.evaluate('window.rviz.project(0.5, -1.5, 0)'))
-                wait_until(lambda: points, 10, 'a message on /clicked_point')
-                # The page notes each publication when the server's answer comes back.
-                page.wait_for_function('window.rviz.published.length === 3', timeout=10000)
-                published = page.evaluate('window.rviz.published')
-            finally:
-                browser.close()
-    finally:
-        server.stop()
+    with rviz_page(ros_env, probe, config, tmp_path,
+                   before_browser=subscriptions_seen) as (_server, page):
+        page.wait_for_function('() => window.rviz && window.rviz.ready', timeout=40000)
+
+        def drag(tool: str, start: tuple[float, float], end: tuple[float, float],
+                 shot: str | None = None) -> None:
+            page.click(f'#rviz-tool-{tool}')
+            a = page.evaluate('([x, y]) => window.rviz.project(x, y, 0)', list(start))
+            b = page.evaluate('([x, y]) => window.rviz.project(x, y, 0)', list(end))
+            page.mouse.move(*a)
+            page.mouse.down()
+            page.mouse.move(*b, steps=6)
+            if shot:
+                page.wait_for_timeout(100)  # animation frames with the arrow
+                screenshot(page, shot)
+            page.mouse.up()
+
+        # 2D Pose Estimate: press at (1, 1), drag towards (2, 2): yaw 45 degrees.
+        drag('initialpose', (1.0, 1.0), (2.0, 2.0))
+        wait_until(lambda: initial, 10, 'a message on /initialpose')
+        assert page.evaluate('window.rviz.tool') == 'interact'
+        # 2D Goal Pose: at (-1, 2) towards (-1, 3): yaw 90 degrees; the arrow shows.
+        drag('goal', (-1.0, 2.0), (-1.0, 3.0), shot='rviz_tools')
+        wait_until(lambda: goals, 10, 'a message on /goal_pose')
+        arrow_at = page.evaluate('window.rviz.project(-1, 2.5, 0)')
+        # Publish Point: one click at (0.5, -1.5).
+        page.click('#rviz-tool-point')
+        page.mouse.click(*page.evaluate('window.rviz.project(0.5, -1.5, 0)'))
+        wait_until(lambda: points, 10, 'a message on /clicked_point')
+        # The page notes each publication when the server's answer comes back.
+        page.wait_for_function('window.rviz.published.length === 3', timeout=10000)
+        published = page.evaluate('window.rviz.published')
     pose = initial[0]
     assert pose.header.frame_id == 'odom'
     assert (pose.pose.pose.position.x, pose.pose.pose.position.y) == pytest.approx(
@@ -335,7 +342,6 @@ def transform(parent: str, child: str, x: float, y: float, stamp: Any) -> Any:
 
 def test_dae_and_obj_meshes_and_frame_locked_mesh_markers(ros_env, probe, tmp_path):
     from PIL import Image as PILImage
-    from playwright.sync_api import sync_playwright
     from rclpy.qos import DurabilityPolicy, QoSProfile
     from std_msgs.msg import String
     from tf2_msgs.msg import TFMessage
@@ -368,52 +374,42 @@ def test_dae_and_obj_meshes_and_frame_locked_mesh_markers(ros_env, probe, tmp_pa
         display('Grid', 'Grid'), display('RobotModel', 'RobotModel',
                                          **{'Description Topic': {'Value': '/robot_description'}}),
         display('Marker', 'Marker', '/visualization_marker')], TOP_DOWN)
-    server, _ = start_rqt(ros_env, tmp_path / 'state')
-    try:
-        with sync_playwright() as playwright, Background(probe):
-            browser = launch_browser(playwright)
-            try:
-                page = browser.new_page(viewport=VIEWPORT)
-                page.goto(server.page_url('/rviz', config=str(config)))
-                page.wait_for_function(
-                    '''() => window.rviz && window.rviz.ready && window.rviz.meshes.length === 2
-                        && window.rviz.status.RobotModel === 'OK' && window.rviz.frames.mover
-                        && !window.rviz.frames.mover.error''', timeout=40000)
-                # The page's Marker subscription is matched: one message of each arrives.
-                wait_until(lambda: markers.get_subscription_count() >= 1, 20,
-                           "the page's marker subscription")
-                for ns, locked, uri, colour, y in (
-                        ('locked', True, f'file://{meshes}/box.obj', (0.0, 0.0, 1.0), -1.0),
-                        ('free', False, f'file://{meshes}/red_box.dae', (0.0, 0.0, 0.0), 1.0)):
-                    m = Marker(ns=ns, id=0, type=Marker.MESH_RESOURCE, action=Marker.ADD,
-                               mesh_resource=uri, frame_locked=locked,
-                               mesh_use_embedded_materials=not locked)
-                    m.header.frame_id = 'mover'
-                    m.pose.position.y, m.pose.orientation.w = y, 1.0
-                    m.scale.x = m.scale.y = m.scale.z = 1.0
-                    m.color.r, m.color.g, m.color.b = colour
-                    m.color.a = 1.0
-                    markers.publish(m)
-                page.wait_for_function('window.rviz.markers.length === 2', timeout=20000)
-                page.wait_for_timeout(300)
-                before = {m['ns']: m['position'] for m in page.evaluate('window.rviz.markers')}
-                at = page.evaluate('''[[0, 0], [0, 1.5], [-2, -1], [-2, 1]].map(([x, y]) =>
-                    window.rviz.project(x, y, 0.3))''')
-                shot = screenshot(page, 'rviz_meshes')
-                # mover goes to x = 1: the frame-locked marker follows, the other stays.
-                mover['x'] = 1.0
-                page.wait_for_function('''() => window.rviz.markers.some((m) => m.ns === 'locked'
-                    && Math.abs(m.position[0] - 1) < 1e-6)''', timeout=20000)
-                after = {m['ns']: m['position'] for m in page.evaluate('window.rviz.markers')}
-                status = page.evaluate('window.rviz.status')
-                page.wait_for_timeout(100)  # animation frames with the marker moved
-                moved_at = page.evaluate('[[1, -1], [-2, -1]].map(([x, y]) => '
-                                         'window.rviz.project(x, y, 0.3))')
-                moved = screenshot(page, 'rviz_meshes_moved')
-            finally:
-                browser.close()
-    finally:
-        server.stop()
+    with rviz_page(ros_env, probe, config, tmp_path) as (_server, page):
+        page.wait_for_function(
+            '''() => window.rviz && window.rviz.ready && window.rviz.meshes.length === 2
+                && window.rviz.status.RobotModel === 'OK' && window.rviz.frames.mover
+                && !window.rviz.frames.mover.error''', timeout=40000)
+        # The page's Marker subscription is matched: one message of each arrives.
+        wait_until(lambda: markers.get_subscription_count() >= 1, 20,
+                   "the page's marker subscription")
+        for ns, locked, uri, colour, y in (
+                ('locked', True, f'file://{meshes}/box.obj', (0.0, 0.0, 1.0), -1.0),
+                ('free', False, f'file://{meshes}/red_box.dae', (0.0, 0.0, 0.0), 1.0)):
+            m = Marker(ns=ns, id=0, type=Marker.MESH_RESOURCE, action=Marker.ADD,
+                       mesh_resource=uri, frame_locked=locked,
+                       mesh_use_embedded_materials=not locked)
+            m.header.frame_id = 'mover'
+            m.pose.position.y, m.pose.orientation.w = y, 1.0
+            m.scale.x = m.scale.y = m.scale.z = 1.0
+            m.color.r, m.color.g, m.color.b = colour
+            m.color.a = 1.0
+            markers.publish(m)
+        page.wait_for_function('window.rviz.markers.length === 2', timeout=20000)
+        page.wait_for_timeout(300)
+        before = {m['ns']: m['position'] for m in page.evaluate('window.rviz.markers')}
+        at = page.evaluate('''[[0, 0], [0, 1.5], [-2, -1], [-2, 1]].map(([x, y]) =>
+            window.rviz.project(x, y, 0.3))''')
+        shot = screenshot(page, 'rviz_meshes')
+        # mover goes to x = 1: the frame-locked marker follows, the other stays.
+        mover['x'] = 1.0
+        page.wait_for_function('''() => window.rviz.markers.some((m) => m.ns === 'locked'
+            && Math.abs(m.position[0] - 1) < 1e-6)''', timeout=20000)
+        after = {m['ns']: m['position'] for m in page.evaluate('window.rviz.markers')}
+        status = page.evaluate('window.rviz.status')
+        page.wait_for_timeout(100)  # animation frames with the marker moved
+        moved_at = page.evaluate('[[1, -1], [-2, -1]].map(([x, y]) => '
+                                 'window.rviz.project(x, y, 0.3))')
+        moved = screenshot(page, 'rviz_meshes_moved')
     assert status['RobotModel'] == 'OK' and status['Marker'] == 'OK (2 markers)', status
     assert before['locked'] == pytest.approx([-2.0, -1.0, 0.0], abs=1e-6)
     assert before['free'] == pytest.approx([-2.0, 1.0, 0.0], abs=1e-6)
