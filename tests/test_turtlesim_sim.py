@@ -146,3 +146,44 @@ def test_window_shows_the_composited_canvas():
     assert image.pixelColor(135, 45).getRgb()[:3] == (255, 0, 0)
     assert image.pixelColor(400, 100).getRgb()[:3] == (10, 20, 30)
     assert image.pixelColor(360, 360).getRgb()[:3] != (10, 20, 30)  # the sprite
+
+
+def test_queued_segments_draw_the_pixels_of_one_drawline_each():
+    """Canvas.draw_line queues; flush() draws runs of one pen with drawLines. The image must
+    equal drawing every segment on its own, in order, with upstream's pen (round caps)."""
+    import os
+    import random
+
+    os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')
+    from PySide6.QtCore import QPointF, Qt
+    from PySide6.QtGui import QColor, QGuiApplication, QImage, QPainter, QPen
+    from turtlesim_py.canvas import Canvas
+
+    QGuiApplication.instance() or QGuiApplication([])
+    rng = random.Random(24)
+    pens = [((255, 0, 0), 3), ((0, 255, 0), 1), ((179, 184, 255), 7)]
+    segments = []
+    for _ in range(600):  # runs of one pen, then another, overlapping each other
+        rgb, width = pens[rng.randrange(3)] if rng.random() < 0.2 else (
+            segments[-1][4:] if segments else pens[0])
+        x, y = rng.uniform(-0.5, 11.5), rng.uniform(-0.5, 11.5)
+        segments.append((x, y, x + rng.uniform(-0.3, 0.3), y + rng.uniform(-0.3, 0.3),
+                         rgb, width))
+    canvas = Canvas()
+    for index, segment in enumerate(segments):
+        canvas.draw_line(*segment)
+        if index % 97 == 0:
+            canvas.rgb_at(0, 0)  # a colour read mid-tick draws what is queued
+    canvas.end_drawing()
+
+    expected = QImage(500, 500, QImage.Format.Format_ARGB32)
+    expected.fill(QColor(255, 255, 255, 0))
+    painter = QPainter(expected)
+    for x0, y0, x1, y1, rgb, width in segments:
+        pen = QPen(QColor(*rgb))
+        pen.setWidth(width)
+        pen.setCapStyle(Qt.PenCapStyle.RoundCap)
+        painter.setPen(pen)
+        painter.drawLine(QPointF(x0 * 45.0, y0 * 45.0), QPointF(x1 * 45.0, y1 * 45.0))
+    painter.end()
+    assert canvas.path == expected

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import threading
 
-from PySide6.QtCore import QPointF, QRectF, Qt
+from PySide6.QtCore import QLineF, QPointF, QRectF, Qt
 from PySide6.QtGui import QColor, QImage, QPainter, QPainterPath, QPen
 
 from turtlesim_py.sim import CANVAS_PIXELS, PIXELS_PER_METER
@@ -27,10 +27,12 @@ class Canvas:
         self._pen = QPen()
         self._pen.setCapStyle(Qt.PenCapStyle.RoundCap)
         self._pen_key: tuple[int, int, int, int] | None = None
+        self._pending: list[tuple[tuple[int, int, int, int], QLineF]] = []
         self.clear()
 
     def clear(self) -> None:
         with self.lock:
+            self._pending.clear()
             self.end_drawing()
             self.path.fill(QColor(255, 255, 255, 0))
 
@@ -38,21 +40,50 @@ class Canvas:
                   rgb: tuple[int, int, int], width: int) -> None:
         """A segment between two internal positions (metres, y downward).
 
-        The painter stays open from tick to tick (opening one and setting its pen every tick
-        was a third of a tick's cost); whoever reads the whole image ends it first.
+        Segments are queued and drawn by flush() (the tick calls it once, and every reader
+        of pixels first): a run of segments with the same pen is one drawLines call, which
+        draws the same pixels as one drawLine per segment in the same order (checked by
+        tests/test_turtlesim_sim.py), at about half the cost per segment.
         """
+        m = PIXELS_PER_METER
+        self._pending.append(((*rgb, width), QLineF(x0 * m, y0 * m, x1 * m, y1 * m)))
+
+    def flush(self) -> None:
+        """Draw the queued segments, oldest first. The painter stays open from tick to tick
+        (opening one and setting its pen every tick was a third of a tick's cost); whoever
+        reads the whole image ends it first (end_drawing)."""
+        pending = self._pending
+        if not pending:
+            return
         if self._painter is None:
             self._painter = QPainter(self.path)
-        key = (*rgb, width)
+        painter = self._painter
+        run: list[QLineF] = []
+        run_key = None
+        for key, line in pending:
+            if key != run_key:
+                if run:
+                    self._draw_run(painter, run_key, run)
+                    run = []
+                run_key = key
+            run.append(line)
+        self._draw_run(painter, run_key, run)
+        pending.clear()
+
+    def _draw_run(self, painter: QPainter, key: tuple[int, int, int, int],
+                  lines: list[QLineF]) -> None:
         if key != self._pen_key:
-            self._pen.setColor(QColor(*rgb))
-            self._pen.setWidth(width)
-            self._painter.setPen(self._pen)
+            self._pen.setColor(QColor(key[0], key[1], key[2]))
+            self._pen.setWidth(key[3])
+            painter.setPen(self._pen)
             self._pen_key = key
-        m = PIXELS_PER_METER
-        self._painter.drawLine(QPointF(x0 * m, y0 * m), QPointF(x1 * m, y1 * m))
+        if len(lines) == 1:
+            painter.drawLine(lines[0])
+        else:
+            painter.drawLines(lines)
 
     def end_drawing(self) -> None:
+        self.flush()
         if self._painter is not None:
             self._painter.end()
             self._painter = None
@@ -60,6 +91,7 @@ class Canvas:
 
     def rgb_at(self, px: int, py: int) -> tuple[int, int, int]:
         """RGB of the path layer (alpha ignored: untouched pixels read 255,255,255)."""
+        self.flush()
         value = self.path.pixel(px, py)
         return (value >> 16) & 0xFF, (value >> 8) & 0xFF, value & 0xFF
 

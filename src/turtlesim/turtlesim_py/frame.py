@@ -438,13 +438,18 @@ class TurtleFrame(RclcppParameters, Node):
             self.missed_ticks += round((started - self._last_tick) / sim.FIXED_DT) - 1
         self._last_tick = started
         now = self.now_seconds()
-        with self.canvas.lock:
+        canvas = self.canvas
+        changed = False
+        with canvas.lock:
             for turtle in self._order:
                 try:
-                    turtle.update(dt, now)
+                    changed = turtle.update(dt, now, canvas) or changed
                 except Exception as error:
                     self.repeated.error((turtle.name, 'update', type(error)),
                                         f'Updating turtle [{turtle.name}] failed: {error!r}')
+            canvas.flush()
+        if changed:
+            self.dirty = True
         if len(self.tick_costs) < 1_000_000:
             self.tick_costs.append(time.perf_counter() - started)
 

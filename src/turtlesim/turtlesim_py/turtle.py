@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import random
 from collections.abc import Callable
+from math import hypot
 from typing import TYPE_CHECKING
 
 from geometry_msgs.msg import Twist
@@ -19,8 +20,10 @@ from turtlesim.srv import SetPen, TeleportAbsolute, TeleportRelative
 
 from turtlesim_py import sim
 from turtlesim_py.canvas import SHELL_COLOURS
+from turtlesim_py.sim import CANVAS_HEIGHT, CANVAS_WIDTH, CMD_VEL_TIMEOUT, FLOAT32_MAX, integrate
 
 if TYPE_CHECKING:
+    from turtlesim_py.canvas import Canvas
     from turtlesim_py.frame import TurtleFrame
 
 TOPIC_QOS = QoSProfile(depth=7, history=HistoryPolicy.KEEP_LAST,
@@ -72,12 +75,19 @@ class Turtle:
 
         node = frame
         locked = frame.locked
-        # Taken by the tick itself (take_commands), never by the executor: see PolledByTick.
+        # Taken by the tick itself (update), never by the executor: see PolledByTick.
         self.cmd_vel_sub = node.create_subscription(
             Twist, f'{name}/cmd_vel', self._on_cmd_vel, TOPIC_QOS,
             callback_group=frame.polled_by_tick)
         self.pose_pub = node.create_publisher(Pose, f'{name}/pose', TOPIC_QOS)
         self.color_pub = node.create_publisher(Color, f'{name}/color_sensor', TOPIC_QOS)
+        # The handles' own methods for the per-tick calls: the rclpy wrappers add a type
+        # check and a use-count context per call (update() explains why that is safe).
+        self._take = self.cmd_vel_sub.handle.take_message
+        self._pose_subscribers = self.pose_pub.handle.get_subscription_count
+        self._publish_pose = self.pose_pub.handle.publish
+        self._color_subscribers = self.color_pub.handle.get_subscription_count
+        self._publish_color = self.color_pub.handle.publish
         self.services = [
             node.create_service(SetPen, f'{name}/set_pen', locked(self._on_set_pen)),
             node.create_service(TeleportAbsolute, f'{name}/teleport_absolute',
@@ -100,27 +110,25 @@ class Turtle:
         self.action_server = action_server
 
     # ---------------------------------------------------------------- inputs
-    def take_commands(self) -> None:
-        """Apply every cmd_vel received since the last tick, oldest first."""
-        handle = self.cmd_vel_sub.handle
-        with handle:
-            while (taken := handle.take_message(Twist, False)) is not None:
-                self._on_cmd_vel(taken[0])
-
-    def _on_cmd_vel(self, msg: Twist) -> None:
-        for field, value in (('linear.x', msg.linear.x), ('linear.y', msg.linear.y),
-                             ('angular.z', msg.angular.z)):
-            if not sim.finite_float32(value):
-                self.repeated.error(
-                    ('cmd_vel', field),
-                    f'Ignoring {self.name}/cmd_vel: {field}={value} is not allowed '
-                    f'(allowed: finite values within +-{sim.FLOAT32_MAX:.7g})')
-                return
-        self.last_command = self.frame.now_seconds()
-        self.vx = msg.linear.x
-        if self.frame.holonomic():
-            self.vy = msg.linear.y
-        self.w = msg.angular.z
+    def _on_cmd_vel(self, msg: Twist, now: float | None = None) -> None:
+        linear = msg.linear
+        vx, vy, w = linear.x, linear.y, msg.angular.z
+        # One chained comparison for the common case (NaN fails it too); the loop names
+        # the offending field.
+        if not -FLOAT32_MAX <= vx <= FLOAT32_MAX or not -FLOAT32_MAX <= vy <= FLOAT32_MAX \
+                or not -FLOAT32_MAX <= w <= FLOAT32_MAX:
+            for field, value in (('linear.x', vx), ('linear.y', vy), ('angular.z', w)):
+                if not sim.finite_float32(value):
+                    self.repeated.error(
+                        ('cmd_vel', field),
+                        f'Ignoring {self.name}/cmd_vel: {field}={value} is not allowed '
+                        f'(allowed: finite values within +-{sim.FLOAT32_MAX:.7g})')
+                    return
+        self.last_command = self.frame.now_seconds() if now is None else now
+        self.vx = vx
+        if self.frame._holonomic:
+            self.vy = vy
+        self.w = w
         if self.goal is not None:
             self.log.warning('Velocity command received during rotation goal. Aborting goal')
             goal, self.goal = self.goal, None
@@ -181,7 +189,7 @@ class Turtle:
         goal = self._pending.pop(id(handle))
         return await goal.done
 
-    def _step_goal(self) -> None:
+    def _step_goal(self, now: float) -> None:
         goal = self.goal
         if goal is None:
             return
@@ -207,12 +215,22 @@ class Turtle:
         else:
             self.vx = self.vy = 0.0
             self.w = step.angular_velocity
-            self.last_command = self.frame.now_seconds()
+            self.last_command = now
 
     # ---------------------------------------------------------------- tick
-    def update(self, dt: float, now: float) -> None:
-        canvas = self.frame.canvas
-        self.take_commands()
+    def update(self, dt: float, now: float, canvas: Canvas) -> bool:
+        """One tick of this turtle (upstream's order, see docs/turtlesim.md); True when
+        something visible changed.
+
+        Runs for every turtle on every tick, so it calls the rclpy handles directly (taken
+        in __init__; the frame's lock keeps them alive: a turtle is destroyed under it) and
+        keeps to local variables: with 1000 turtles each microsecond here is a millisecond
+        of the 16 ms tick (docs/speed.md).
+        """
+        take = self._take
+        while (taken := take(Twist, False)) is not None:
+            self._on_cmd_vel(taken[0], now)
+        changed = False
         if self.teleports:
             for kind, a, b, c in self.teleports:
                 old_x, old_y = self.x, self.y_int
@@ -225,40 +243,40 @@ class Turtle:
                     canvas.draw_line(self.x, self.y_int, old_x, old_y, self.pen_rgb,
                                      self.pen_width)
             self.teleports.clear()
-            self.frame.dirty = True
+            changed = True
         if self.goal is not None:
-            self._step_goal()
-        if now - self.last_command > sim.CMD_VEL_TIMEOUT:
+            self._step_goal(now)
+        if now - self.last_command > CMD_VEL_TIMEOUT:
             self.vx = self.vy = self.w = 0.0
+        vx, vy, w = self.vx, self.vy, self.w
         old_x, old_y, old_theta = self.x, self.y_int, self.theta
-        x, y, theta = sim.integrate(old_x, old_y, old_theta, self.vx, self.vy, self.w, dt)
-        if sim.hits_wall(x, y):
+        x, y, theta = integrate(old_x, old_y, old_theta, vx, vy, w, dt)
+        if x < 0.0 or x > CANVAS_WIDTH or y < 0.0 or y > CANVAS_HEIGHT:  # sim.hits_wall
             self.log.warning(sim.wall_warning(x, y))
             x, y = sim.clamp_to_walls(x, y)
         self.x, self.y_int, self.theta = x, y, theta
 
         # Nobody listening: skip building and publishing. A subscriber that matches later
         # could not have received this sample anyway (volatile durability).
-        if self.pose_pub.get_subscription_count():
+        if self._pose_subscribers():
             pose = self._pose
             pose.x = x
-            pose.y = sim.CANVAS_HEIGHT - y
+            pose.y = CANVAS_HEIGHT - y
             pose.theta = theta
-            pose.linear_velocity = min(sim.pose_linear_velocity(self.vx, self.vy),
-                                       sim.FLOAT32_MAX)
-            pose.angular_velocity = self.w
-            self.pose_pub.publish(pose)
-        if self.color_pub.get_subscription_count():
+            pose.linear_velocity = min(hypot(vx, vy), FLOAT32_MAX)
+            pose.angular_velocity = w
+            self._publish_pose(pose)
+        if self._color_subscribers():
             color = self._color
+            # rgb_at draws the segments queued so far (this tick's earlier turtles) first.
             color.r, color.g, color.b = canvas.rgb_at(*sim.to_pixel(x, y))
-            self.color_pub.publish(color)
+            self._publish_color(color)
 
         if x != old_x or y != old_y:
             if self.pen_on:
                 canvas.draw_line(old_x, old_y, x, y, self.pen_rgb, self.pen_width)
-            self.frame.dirty = True
-        elif theta != old_theta:
-            self.frame.dirty = True
+            return True
+        return changed or theta != old_theta
 
     def sprite(self) -> tuple[float, float, float, tuple[int, int, int]]:
         return self.x, self.y_int, self.theta, self.shell
