@@ -39,7 +39,7 @@ def cli_node(name: str | None = None, discover: bool = True,
     try:
         if discover and running_for is None:
             bound = 1.8 if spin_time is None else min(1.8, spin_time)
-            context, node = _meet_graph(context, node, node_name, bound=bound)
+            context, node, _ = _meet_graph(context, node, node_name, bound=bound)
         yield node
     finally:
         # Shut the executor of spin_once down while its context lives: left to the garbage
@@ -51,6 +51,15 @@ def cli_node(name: str | None = None, discover: bool = True,
         node.destroy_node()
         if running_for is None:
             rclpy.try_shutdown(context=context)
+
+
+def meet_graph(name: str, bound: float) -> tuple[Any, Any, bool]:
+    """(a fresh context, a node in it, whether it met every participant on this host within
+    `bound` seconds): the daemon's, which must not answer before it has."""
+    context, node = make_node(name)
+    # Never replaced: the others answer a newcomer at their next periodic announcement (every
+    # 0.5 s for our nodes), so a fresh participant would only start that wait anew.
+    return _meet_graph(context, node, name, patience=bound, bound=bound)
 
 
 def make_node(name: str) -> tuple[Any, Any]:
@@ -73,26 +82,34 @@ def _create_node(name: str, context: Any) -> Any:
         parameter_overrides=[Parameter('start_type_description_service', value=False)])
 
 
-def _meet_graph(context: Any, node: Any, name: str, patience: float = 0.4,
-                bound: float = 1.8) -> tuple[Any, Any]:
-    """Wait until another participant is known; replace ours when it is not met quickly.
+def _meet_graph(context: Any, node: Any, name: str, patience: float = 0.7,
+                bound: float = 1.8) -> tuple[Any, Any, bool]:
+    """Wait until every participant on this host is known (see participants.py); replace
+    ours when they are not met quickly. Returns (context, node, whether everyone was met).
 
     With Fast DDS and localhost-only discovery, a new participant is sometimes not answered
-    by the others until their next periodic announcement (up to 3 s later). Normally it meets
-    them within ~0.1 s, so after `patience` seconds without anybody a fresh participant is
-    tried (the old one is shut down once the new one exists, so both get distinct ports).
-    Gives up after `bound` seconds: the graph may well be empty.
+    by the others until their next periodic announcement (up to 3 s later; 0.5 s for nodes
+    that use node_runtime). So after `patience` seconds (longer than that 0.5 s and the
+    ~0.1 s until nodes are named) a fresh participant is tried (the old one is shut down once
+    the new one exists, so both get distinct ports). Where the
+    participants cannot be counted, meeting any other node is enough. Gives up after `bound`
+    seconds: somebody may just not announce.
     """
     import rclpy
+
+    from ros2cli_lite.participants import everyone_met
 
     start = time.monotonic()
     attempt_start = start
     while True:
-        if len(node.get_node_names_and_namespaces()) > 1:
-            return context, node
+        met = everyone_met(node)
+        if met is None:
+            met = len(node.get_node_names_and_namespaces()) > 1
+        if met:
+            return context, node, True
         now = time.monotonic()
         if now - start >= bound:
-            return context, node
+            return context, node, False
         if now - attempt_start >= patience and bound - (now - start) > patience:
             node.destroy_node()
             new_context, new_node = make_node(name)
@@ -148,13 +165,15 @@ def graph_snapshot(node: Any) -> tuple:
 
 
 def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: float = 0.4,
-                   bound: float | None = None) -> bool:
+                   bound: float | None = None, everyone_met: bool = False) -> bool:
     """Let discovery run until the graph has stopped changing for `settle` seconds.
 
     Without a daemon a fresh node knows nothing: poll the graph (cheap, local caches) and return
     once it is stable and complete and, if given, `ready()` holds; never later than `bound`
-    seconds. Complete means another node is known and every node's endpoints have arrived (a
-    node's name and its endpoints are discovered separately, sometimes far apart under load).
+    seconds. Complete means another node is known (unless `everyone_met`: every participant on
+    the host is known, see participants.py, and the graph may be empty) and every node's
+    endpoints have arrived (a node's name and its endpoints are discovered separately,
+    sometimes far apart under load).
     The default bound (None) is 2 s for listings, 4 s while looking for something that may
     just not be discovered yet (a loaded machine can take that long); a verb passes its
     --spin-time. Returns whether `ready()` held.
@@ -172,7 +191,8 @@ def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: f
         now = time.monotonic()
         snapshot = graph_snapshot(node)
         others = [(n, ns) for n, ns in snapshot[0] if full_node_name(n, ns) != own]
-        complete = bool(others) and all(_has_endpoints(node, n, ns) for n, ns in others)
+        complete = (everyone_met or bool(others)) and all(
+            _has_endpoints(node, n, ns) for n, ns in others)
         snapshot = (*snapshot, complete)
         if snapshot != last:
             last, changed = snapshot, now
