@@ -194,9 +194,15 @@ def measure_start(cli: Cli, probe: TestNode, name: str, args: list[str], nodes: 
         except subprocess.TimeoutExpired:
             os.killpg(process.pid, signal.SIGKILL)
             _, errors = process.communicate()
-        # Until every node has left the graph, the next start would be discovered at once.
+    # Until every node has left the graph, the next start would be discovered at once.
+    try:
         probe.spin_until(lambda: not nodes & set(probe.node.get_fully_qualified_node_names()),
                          TIMEOUT_S, f'the nodes of {" ".join(args)} to leave')
+    except AssertionError:
+        left = sorted(nodes & set(probe.node.get_fully_qualified_node_names()))
+        cli.failures.setdefault(name, []).append(
+            f'{", ".join(left)} still listed {TIMEOUT_S:.0f} s after `ros2 {args[0]}` exited '
+            f'(exit {process.returncode})')
     if not keep:
         return
     cli.samples.setdefault(name, []).append(elapsed)
