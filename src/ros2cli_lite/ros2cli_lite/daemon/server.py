@@ -49,11 +49,16 @@ class GraphCache:
         """Create the node and let discovery settle before the first answer (as the CLI did)."""
         from ros2cli_lite import node as cli
         name = f'_ros2cli_daemon_{os.environ.get("ROS_DOMAIN_ID", "0") or "0"}_{os.getpid()}'
+        started = time.monotonic()
         context, node, met = cli.meet_graph(name, FIRST_LISTEN)
+        met_after = time.monotonic() - started
         if met:
             cli.wait_for_graph(node, settle=SETTLE_WHEN_MET, bound=2.0, everyone_met=True)
         else:  # and until every node's endpoints have arrived
             cli.wait_for_graph(node, bound=2.0)
+        print(f'ready {time.monotonic() - started:.3f} s after creating the participant: '
+              f'{"every participant met" if met else "not every participant met"} after '
+              f'{met_after:.3f} s', file=sys.stderr, flush=True)
         with self._lock:
             self._context, self._node = context, node
             self._reused.clear()
