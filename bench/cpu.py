@@ -8,6 +8,9 @@ from common import Row, Session, cpu_seconds, verdict
 
 WARM_UP_S = 3.0
 DURATION_S = 30.0
+# Issue 24 item 3 asks turtlesim for <= 2 % of a core in the demo; the controller keeps the
+# earlier 5 % bar.
+TARGETS = {'turtlesim': 2.0, 'turtle_controller': 5.0}
 
 
 def run(session: Session, duration: float = DURATION_S) -> tuple[list[Row], dict]:
@@ -23,5 +26,6 @@ def run(session: Session, duration: float = DURATION_S) -> tuple[list[Row], dict
     percent = {name: 100 * (cpu_seconds(pid) - before[name]) / elapsed
                for name, pid in pids.items()}
     rows = [Row('CPU', f'{name}, {elapsed:.0f} s of the demo', f'{value:.1f} % of a core',
-                '< 5 %', verdict(value < 5.0)) for name, value in percent.items()]
+                f'<= {TARGETS[name]:g} %', verdict(value <= TARGETS[name]))
+            for name, value in percent.items()]
     return rows, {'cpu': percent}

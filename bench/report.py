@@ -60,7 +60,7 @@ def write_plots(data: dict) -> list[Path]:
                title='Pose latency, same subscriber, same run')
         ax.legend()
         written.append(_save(fig, 'pose_latency.png'))
-    scale = [r for r in data.get('scale', []) if 'error' not in r]
+    scale = [r for r in data.get('scale', []) if 'error' not in r and not r.get('sink')]
     if scale:
         counts = [r['count'] for r in scale]
         fig, (rate_ax, tick_ax) = plt.subplots(1, 2, figsize=(10, 4))
