@@ -11,7 +11,6 @@ were heard as hold port pairs, and all their nodes have names, everyone has been
 
 from __future__ import annotations
 
-import os
 from typing import Any
 
 PORT_BASE = 7400
@@ -25,18 +24,10 @@ UNKNOWN_NODE_NAME = '_NODE_NAME_UNKNOWN_'  # rmw_dds_common's, until the node is
 _UDP_TABLES = ('/proc/net/udp', '/proc/net/udp6')
 
 
-def domain_id() -> int:
-    try:
-        return int(os.environ.get('ROS_DOMAIN_ID') or 0)
-    except ValueError:
-        return 0
-
-
-def bound_participants(domain: int | None = None) -> int | None:
+def bound_participants(domain: int) -> int | None:
     """How many participants of `domain` hold their unicast port pair on this host (in this
     network namespace); None where /proc/net/udp cannot be read."""
-    first = (PORT_BASE + DOMAIN_GAIN * (domain_id() if domain is None else domain)
-             + METATRAFFIC_UNICAST_OFFSET)
+    first = PORT_BASE + DOMAIN_GAIN * domain + METATRAFFIC_UNICAST_OFFSET
     ports: set[int] = set()
     readable = False
     for table in _UDP_TABLES:
@@ -77,7 +68,7 @@ def heard_participants(node: Any) -> tuple[set[bytes], bool]:
 def everyone_met(node: Any) -> bool | None:
     """Whether `node` has heard every participant bound on this host (itself included) and
     knows their nodes' names; None where the participants cannot be counted."""
-    expected = bound_participants()
+    expected = bound_participants(node.context.get_domain_id())
     if expected is None:
         return None
     heard, named = heard_participants(node)
