@@ -126,7 +126,7 @@ class Turtle:
                     return
         self.last_command = self.frame.now_seconds() if now is None else now
         self.vx = vx
-        if self.frame._holonomic:
+        if self.frame.holonomic():
             self.vy = vy
         self.w = w
         if self.goal is not None:
