@@ -91,9 +91,9 @@ def _meet_graph(context: Any, node: Any, name: str, patience: float = 0.7,
     by the others until their next periodic announcement (up to 3 s later; 0.5 s for nodes
     that use node_runtime). So after `patience` seconds (longer than that 0.5 s and the
     ~0.1 s until nodes are named) a fresh participant is tried (the old one is shut down once
-    the new one exists, so both get distinct ports). Where the
-    participants cannot be counted, meeting any other node is enough. Gives up after `bound`
-    seconds: somebody may just not announce.
+    the new one exists, so both get distinct ports). Where the participants cannot be
+    counted, meeting any other node is enough. Gives up after `bound` seconds: somebody may
+    just not announce.
     """
     import rclpy
 

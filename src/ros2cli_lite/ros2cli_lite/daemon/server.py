@@ -28,9 +28,9 @@ HEALTH_PERIOD = 2.0            # how often the participant checks that it still 
 # Every Fast DDS participant re-announces itself every 3 s (its default announcement period)
 # to all 32 localhost participant ports; a new participant's first announcements are now and
 # then not heard (measured here: 0-3.3 s until an existing node was known). So a fresh daemon
-# answers once it has met every participant bound on this host (participants.py, 0.1-0.8 s
-# here, a fresh participant tried every 0.4 s), or else after one whole period: then it has
-# heard everyone who announces.
+# answers once it has met every participant bound on this host (participants.py: 0.1-0.8 s
+# next to a turtlesim here), or else after one whole period: then it has heard everyone who
+# announces.
 FIRST_LISTEN = 3.3
 SETTLE_WHEN_MET = 0.1  # the graph unchanged this long: the last endpoints have trickled in
 
@@ -248,7 +248,8 @@ def main() -> int:
         pass
     # Announced every 0.5 s: a participant that starts next to the daemon meets it within
     # ~0.5 s instead of at Fast DDS's 3 s period (the others do not answer a newcomer at
-    # once). No pinned participant id: the daemon may replace its participant (meet_graph).
+    # once). No pinned participant id: a rebuilt participant (GraphCache._rebuild) is made in
+    # this same process, which Fast DDS refuses for an id already used in it.
     from node_runtime.discovery import announce_often
     announce_often(fresh_port=False)
     cache = GraphCache()
