@@ -248,8 +248,8 @@ def main() -> int:
         pass
     # Announced every 0.5 s: a participant that starts next to the daemon meets it within
     # ~0.5 s instead of at Fast DDS's 3 s period (the others do not answer a newcomer at
-    # once). No pinned participant id: a rebuilt participant (GraphCache._rebuild) is made in
-    # this same process, which Fast DDS refuses for an id already used in it.
+    # once). The participant id is left to Fast DDS: the rotation is for nodes restarted after
+    # a SIGKILL, and a pinned id would be refused to a second participant of this process.
     from node_runtime.discovery import announce_often
     announce_often(fresh_port=False)
     cache = GraphCache()
