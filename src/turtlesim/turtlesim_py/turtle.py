@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 import random
 from collections.abc import Callable
-from math import hypot
 from typing import TYPE_CHECKING
 
 from geometry_msgs.msg import Twist
@@ -20,7 +19,7 @@ from turtlesim.srv import SetPen, TeleportAbsolute, TeleportRelative
 
 from turtlesim_py import sim
 from turtlesim_py.canvas import SHELL_COLOURS
-from turtlesim_py.sim import CANVAS_HEIGHT, CANVAS_WIDTH, CMD_VEL_TIMEOUT, FLOAT32_MAX, integrate
+from turtlesim_py.sim import CANVAS_HEIGHT, CMD_VEL_TIMEOUT, FLOAT32_MAX, integrate
 
 if TYPE_CHECKING:
     from turtlesim_py.canvas import Canvas
@@ -110,7 +109,7 @@ class Turtle:
         self.action_server = action_server
 
     # ---------------------------------------------------------------- inputs
-    def _on_cmd_vel(self, msg: Twist, now: float | None = None) -> None:
+    def _on_cmd_vel(self, msg: Twist, now: float) -> None:
         linear = msg.linear
         vx, vy, w = linear.x, linear.y, msg.angular.z
         # One chained comparison for the common case (NaN fails it too); the loop names
@@ -124,7 +123,7 @@ class Turtle:
                         f'Ignoring {self.name}/cmd_vel: {field}={value} is not allowed '
                         f'(allowed: finite values within +-{sim.FLOAT32_MAX:.7g})')
                     return
-        self.last_command = self.frame.now_seconds() if now is None else now
+        self.last_command = now
         self.vx = vx
         if self.frame.holonomic():
             self.vy = vy
@@ -251,7 +250,7 @@ class Turtle:
         vx, vy, w = self.vx, self.vy, self.w
         old_x, old_y, old_theta = self.x, self.y_int, self.theta
         x, y, theta = integrate(old_x, old_y, old_theta, vx, vy, w, dt)
-        if x < 0.0 or x > CANVAS_WIDTH or y < 0.0 or y > CANVAS_HEIGHT:  # sim.hits_wall
+        if sim.hits_wall(x, y):
             self.log.warning(sim.wall_warning(x, y))
             x, y = sim.clamp_to_walls(x, y)
         self.x, self.y_int, self.theta = x, y, theta
@@ -263,7 +262,7 @@ class Turtle:
             pose.x = x
             pose.y = CANVAS_HEIGHT - y
             pose.theta = theta
-            pose.linear_velocity = min(hypot(vx, vy), FLOAT32_MAX)
+            pose.linear_velocity = min(sim.pose_linear_velocity(vx, vy), FLOAT32_MAX)
             pose.angular_velocity = w
             self._publish_pose(pose)
         if self._color_subscribers():
