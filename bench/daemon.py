@@ -51,6 +51,10 @@ def _start_nodes(s: Session) -> None:
                'the four nodes to be listed')
 
 
+def _serves_all(listing: str) -> bool:
+    return all(f'{name}\n' in listing for name in MUST_SERVE)
+
+
 def _completeness(env: dict[str, str], calls: int) -> tuple[int, int, list[float], list[float]]:
     subprocess.run(['ros2', 'daemon', 'stop'], env=env, capture_output=True, timeout=30)
     incomplete_services = incomplete_nodes = 0
@@ -58,7 +62,7 @@ def _completeness(env: dict[str, str], calls: int) -> tuple[int, int, list[float
     for _ in range(calls):
         elapsed, out = _ros2(env, 'service', 'list')
         service_times.append(elapsed)
-        incomplete_services += not all(f'{name}\n' in out for name in MUST_SERVE)
+        incomplete_services += not _serves_all(out)
     for _ in range(calls):
         elapsed, out = _ros2(env, 'node', 'list')
         node_times.append(elapsed)
@@ -73,7 +77,7 @@ def _cold_starts(env: dict[str, str], starts: int) -> tuple[int, list[float]]:
         subprocess.run(['ros2', 'daemon', 'stop'], env=env, capture_output=True, timeout=30)
         elapsed, out = _ros2(env, 'service', 'list')
         times.append(elapsed)
-        incomplete += not all(f'{name}\n' in out for name in MUST_SERVE)
+        incomplete += not _serves_all(out)
     return incomplete, times
 
 
