@@ -303,24 +303,21 @@ def table_lines(clis: list[Cli]) -> list[tuple[str, str, str, str, str, str]]:
         mine = ours.median_ms(name)
         theirs = reference.median_ms(name) if reference else None
         failed = name in ours.failures
-        if reference is not None and theirs is None:
-            lines.append((name, _fmt(mine), 'not in the reference', '', f'<= {TARGET_RATIO}x',
-                          'FAILED' if failed else ''))
-            continue
-        if reference is None:
-            lines.append((name, _fmt(mine), 'reference: not given', '', f'<= {TARGET_RATIO}x',
-                          'FAILED' if failed else ''))
-            continue
         ratio = mine / theirs if mine is not None and theirs else None
         if name == COLD:  # the bar for the first call is absolute
             target, met = f'<= {COLD_TARGET_MS} ms', mine is not None and mine <= COLD_TARGET_MS
         else:
             target, met = f'<= {TARGET_RATIO}x', ratio is not None and ratio <= TARGET_RATIO
-        state = 'FAILED' if failed else verdict(met)
-        if name in reference.failures:
+        if theirs is not None:
+            theirs_text, ratio_text = _fmt(theirs), f'{ratio:.2f}x' if ratio is not None else 'n/a'
+        else:
+            theirs_text = 'reference: not given' if reference is None else 'not in the reference'
+            ratio_text = ''
+        judged = theirs is not None or name == COLD
+        state = 'FAILED' if failed else verdict(met) if judged else ''
+        if reference is not None and name in reference.failures:
             state += ' (reference failed)'
-        lines.append((name, _fmt(mine), _fmt(theirs),
-                      f'{ratio:.2f}x' if ratio is not None else 'n/a', target, state))
+        lines.append((name, _fmt(mine), theirs_text, ratio_text, target, state))
     return lines
 
 
@@ -330,7 +327,7 @@ def run(s: Session, reference: str | None = None, runs: int = RUNS) -> tuple[lis
     rows = []
     for name, mine, theirs, ratio, target, state in table_lines(clis):
         value = f'{mine} ms' + (f' (reference {theirs} ms, {ratio})' if ratio else
-                                ' (reference: not given)')
+                                f' ({theirs})')
         rows.append(Row('cli_speed', f'`{name}`, median of {runs}', value, target, state))
     data = {'cli_speed': {cli.label: {'argv0': cli.argv0, 'samples_s': cli.samples,
                                       'failures': cli.failures} for cli in clis}}
