@@ -1,0 +1,37 @@
+"""ros2 lifecycle list: Output a list of available transitions."""
+
+from __future__ import annotations
+
+import argparse
+
+from ros2cli_lite.command.lifecycle.api import (
+    absolute,
+    add_node_name,
+    exception_text,
+    managed_node_names,
+    transitions,
+)
+
+HELP = 'Output a list of available transitions'
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_node_name(parser)
+    parser.add_argument('-a', '--all', action='store_true',
+                        help='Display all existing transitions')
+
+
+def main(args: argparse.Namespace) -> int | str:
+    from ros2cli_lite.node import cli_node
+    wanted = absolute(args.node_name)
+    if wanted not in managed_node_names(args, args.include_hidden_nodes, wanted):
+        return 'Node not found'
+    with cli_node(spin_time=args.spin_time) as node:
+        found = transitions(node, wanted, graph=args.all)
+    if isinstance(found, Exception):
+        return exception_text(args.node_name, found)
+    for item in found:
+        print(f'- {item.transition.label} [{item.transition.id}]\n'
+              f'\tStart: {item.start_state.label}\n'
+              f'\tGoal: {item.goal_state.label}')
+    return 0
