@@ -4,6 +4,12 @@ import os
 
 from launch._missing import module_getattr
 
-from launch_ros import actions, parameter_descriptions, substitutions  # noqa: F401
+from launch_ros import (  # noqa: F401
+    actions,
+    event_handlers,
+    events,
+    parameter_descriptions,
+    substitutions,
+)
 
 __getattr__ = module_getattr(__name__, os.path.dirname(__file__))
