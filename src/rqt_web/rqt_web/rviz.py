@@ -15,12 +15,13 @@ TF comes from `tf_feed` (one tf2_ros Buffer for the whole app). Here:
   PoseArray, Path, Odometry and LaserScan displays), null before the first.
 - GET /api/rviz/resource?uri=package://PKG/PATH or file:///PATH: a mesh or texture file
   (.stl .dae .obj .mtl .png .jpg), package:// resolved through the ament index.
-- GET /api/rviz/cloud?topic=T&after=N and /api/rviz/image?topic=T&after=N (PointCloud2 and
-  Image displays; &reliability=Best Effort as the display's Topic QoS, else reliable): the
-  latest message newer than the page's N, waited for up to 1 s (204 No Content if none
-  came), as binary made once per message with numpy: a cloud's finite points as float32 x,
-  y, z then, if coloured, uint8 r, g, b per point; an image as RGBA bytes. The `X-Rviz`
-  header gives JSON: seq, frame, points or width/height, colour.
+- GET /api/rviz/cloud?topic=T&after=N, /api/rviz/image?topic=T&after=N and
+  /api/rviz/map?topic=T&after=N (PointCloud2, Image and Map displays, a map transient
+  local; &reliability=Best Effort as the display's Topic QoS, else reliable): the latest
+  message newer than the page's N, waited for up to 1 s (204 No Content if none came), as
+  binary made once per message with numpy: a cloud's finite points as float32 x, y, z then,
+  if coloured, uint8 r, g, b per point; an image or a map as RGBA bytes. The `X-Rviz`
+  header gives JSON: seq, frame, points or width/height (a map: resolution, origin), colour.
 - POST /api/rviz/tool {tool: initialpose|goal|point, topic, frame, x, y, z, yaw}: what the
   tool belt's 2D Pose Estimate, 2D Goal Pose and Publish Point publish, stamped now.
 """
@@ -323,8 +324,39 @@ def encode_image(msg: Any) -> tuple[bytes, dict]:
     return rgba.tobytes(), {'width': width, 'height': height, 'encoding': msg.encoding}
 
 
+def _map_palette() -> Any:
+    """rviz's "map" colour scheme, indexed by a cell's value as uint8: 0 (free) to 100
+    (occupied) white to black, 101-127 green and 128-254 red to yellow (values a map should
+    not hold), 255 (-1, unknown) grey-green."""
+    import numpy as np
+    palette = np.zeros((256, 4), dtype=np.uint8)
+    palette[:, 3] = 255
+    grey = 255 - (np.arange(101) * 255) // 100
+    palette[:101, :3] = grey[:, None]
+    palette[101:128] = (0, 255, 0, 255)
+    palette[128:255, 0] = 255
+    palette[128:255, 1] = (np.arange(127) * 255) // 126
+    palette[255] = (0x70, 0x89, 0x86, 255)
+    return palette
+
+
+def encode_map(msg: Any) -> tuple[bytes, dict]:
+    """nav_msgs/OccupancyGrid -> RGBA bytes, row 0 at the origin, in rviz's "map" colours;
+    the meta gives the size, resolution and the origin's pose in the map's frame."""
+    import numpy as np
+    width, height = msg.info.width, msg.info.height
+    cells = np.asarray(msg.data, dtype=np.int8).view(np.uint8)
+    if cells.size != width * height:
+        raise ValueError(f'data holds {cells.size} cells, width * height is {width * height}')
+    p, q = msg.info.origin.position, msg.info.origin.orientation
+    return _map_palette()[cells].tobytes(), {
+        'width': width, 'height': height, 'resolution': msg.info.resolution,
+        'position': [p.x, p.y, p.z], 'orientation': [q.x, q.y, q.z, q.w]}
+
+
 STREAMS = {'cloud': ('sensor_msgs/msg/PointCloud2', encode_cloud),
-           'image': ('sensor_msgs/msg/Image', encode_image)}
+           'image': ('sensor_msgs/msg/Image', encode_image),
+           'map': ('nav_msgs/msg/OccupancyGrid', encode_map)}
 
 
 class Stream:
@@ -358,13 +390,16 @@ async def stream_route(request: web.Request) -> web.StreamResponse:
     streams = app.setdefault('rviz_streams', {})
     stream = streams.get((kind, topic, reliable))
     if stream is None:
-        from rclpy.qos import QoSProfile, ReliabilityPolicy
+        from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
         stream = streams[(kind, topic, reliable)] = Stream()
         # rviz2's display QoS: keep last 5, Reliable unless the display's Topic says Best
         # Effort (a best-effort subscription drops a large cloud when one fragment is lost:
         # 2 of 10 clouds/s arrived here; a best-effort publisher needs it, as in rviz2).
+        # A Map display is transient local, as rviz2's: a map published once still arrives.
         qos = QoSProfile(depth=5, reliability=ReliabilityPolicy.RELIABLE if reliable
-                         else ReliabilityPolicy.BEST_EFFORT)
+                         else ReliabilityPolicy.BEST_EFFORT,
+                         durability=DurabilityPolicy.TRANSIENT_LOCAL if kind == 'map'
+                         else DurabilityPolicy.VOLATILE)
         await app['bridge'].subscribe(topic, msg_type, stream.received, qos=qos)
     if stream.seq <= after:
         try:
@@ -492,5 +527,5 @@ def add_routes(app: web.Application) -> None:
         web.get('/api/rviz/markers', markers_route),
         web.get('/api/rviz/latest', latest_route),
         web.get('/api/rviz/resource', resource_route),
-        web.get('/api/rviz/{kind:cloud|image}', stream_route),
+        web.get('/api/rviz/{kind:cloud|image|map}', stream_route),
         web.post('/api/rviz/tool', tool_route)])

@@ -1,0 +1,25 @@
+from setuptools import find_packages, setup
+
+package_name = 'dummy_sensors'
+
+setup(
+    name=package_name,
+    version='0.33.5',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+    ],
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='Turtlesim Team',
+    maintainer_email='team@turtles.example.com',
+    description="Stand-in for upstream's dummy_sensors (C++ upstream), in Python.",
+    license='Apache-2.0',
+    entry_points={
+        'console_scripts': [
+            'dummy_laser = dummy_sensors.dummy_laser:main',
+            'dummy_joint_states = dummy_sensors.dummy_joint_states:main',
+        ],
+    },
+)
