@@ -63,8 +63,9 @@ def test_lifecycle_demo_launch_walks_lc_talker(launch, ros_env):
                         r'to configuring')
     run.wait_for_output(r'\[lc_listener\]: notify callback: Transition from state configuring '
                         r'to inactive')
-    # lc_client waits 10 s between transitions; activating takes lc_talker 2 s.
-    run.wait_for_output(r'\[lc_client\]: Transition 2 successfully triggered\.', timeout=16)
+    # lc_client waits 10 s between transitions and logs their ids (activate: 3); activating
+    # takes lc_talker 2 s.
+    run.wait_for_output(r'\[lc_client\]: Transition 3 successfully triggered\.', timeout=16)
     run.wait_for_output(r'\[lc_listener\]: data_callback: Lifecycle HelloWorld #\d+',
                         timeout=5)
     assert run.stop() == 0

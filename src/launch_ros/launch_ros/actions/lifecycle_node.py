@@ -43,7 +43,9 @@ class _InThread(Action):
 class LifecycleNode(Node):
     def __init__(self, *, name: SomeSubstitutionsType, namespace: SomeSubstitutionsType,
                  **kwargs: Any) -> None:
-        super().__init__(name=name, namespace=namespace, **kwargs)
+        # '' is the root namespace (upstream's demo launch files pass it): the node's full
+        # name must be known to reach its services.
+        super().__init__(name=name, namespace='/' if namespace == '' else namespace, **kwargs)
         self.__logger = get_logger(__name__)
         self.__client: Any = None
         self.__subscription: Any = None
