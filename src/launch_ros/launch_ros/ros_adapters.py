@@ -33,6 +33,10 @@ class ROSAdapter:
         self._thread = threading.Thread(target=self._spin, daemon=True)
         self._thread.start()
 
+    @property
+    def is_shut_down(self) -> bool:
+        return self._stop.is_set()
+
     def _spin(self) -> None:
         while not self._stop.is_set():
             self._executor.spin_once(timeout_sec=0.1)

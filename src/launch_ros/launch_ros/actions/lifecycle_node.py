@@ -15,7 +15,7 @@ from launch.substitution import SomeSubstitutionsType
 
 from launch_ros.actions.node import Node
 from launch_ros.events.lifecycle import ChangeState, StateTransition
-from launch_ros.ros_adapters import get_ros_node
+from launch_ros.ros_adapters import get_ros_adapter
 
 if TYPE_CHECKING:
     import asyncio
@@ -48,6 +48,7 @@ class LifecycleNode(Node):
         super().__init__(name=name, namespace='/' if namespace == '' else namespace, **kwargs)
         self.__logger = get_logger(__name__)
         self.__client: Any = None
+        self.__adapter: Any = None
         self.__subscription: Any = None
 
     def execute(self, context: LaunchContext) -> Any:
@@ -56,7 +57,8 @@ class LifecycleNode(Node):
             raise RuntimeError('node_name unexpectedly incomplete for lifecycle node')
         from lifecycle_msgs.msg import TransitionEvent
         from lifecycle_msgs.srv import ChangeState as ChangeStateSrv
-        node = get_ros_node(context)
+        self.__adapter = get_ros_adapter(context)
+        node = self.__adapter.ros_node
         self.__subscription = node.create_subscription(
             TransitionEvent, f'{self.node_name}/transition_event',
             lambda msg: self._on_transition_event(context, msg), 10)
@@ -80,10 +82,15 @@ class LifecycleNode(Node):
         request.transition.id = event.transition_id
         return [_InThread(lambda: self._call_change_state(request, context))]
 
+    def _ending(self, context: LaunchContext) -> bool:
+        # A Shutdown event emitted by an action stops the ROS node before the context says
+        # it is shutting down: no answer comes then.
+        return context.is_shutdown or self.__adapter.is_shut_down
+
     def _call_change_state(self, request: Any, context: LaunchContext) -> None:
         service = self.__client.srv_name
         while not self.__client.wait_for_service(timeout_sec=WAIT_STEP):
-            if context.is_shutdown:
+            if self._ending(context):
                 self.__logger.warning(f"Abandoning wait for the '{service}' service, due to "
                                       'shutdown.')
                 return
@@ -91,7 +98,7 @@ class LifecycleNode(Node):
         future = self.__client.call_async(request)
         future.add_done_callback(lambda _future: done.set())
         while not done.wait(WAIT_STEP):
-            if context.is_shutdown:
+            if self._ending(context):
                 self.__logger.warning(f"Abandoning wait for the '{service}' service response, "
                                       'due to shutdown.')
                 future.cancel()
