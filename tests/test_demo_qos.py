@@ -101,6 +101,9 @@ def test_quality_of_service_demo_py_nodes(launch, ros_env) -> None:
                         env=ros_env)
     incompatible = launch(argv=[*demo, 'incompatible_qos', 'durability'], env=ros_env)
     bad = launch(argv=[*demo, 'deadline', '-5'], env=ros_env)
+    bad_override = launch(argv=[*demo, 'qos_overrides_talker', '--ros-args', '-p',
+                                'qos_overrides./qos_overrides_chatter.publisher.depth:=20'],
+                          env=ros_env)
 
     assert incompatible.wait(timeout=30) == 0
     assert incompatible.output.startswith(
@@ -129,3 +132,8 @@ def test_quality_of_service_demo_py_nodes(launch, ros_env) -> None:
     assert bad.output.splitlines()[-2:] == [
         'deadline: error: argument deadline: must be a positive integer, got -5',
         '[ros2run]: Process exited with failure 2'], bad.output
+    assert bad_override.wait(timeout=20) == 1
+    assert re.fullmatch(r'\[ERROR\] \[[\d.]+\] \[qos_overrides_talker\]: Provided QoS overrides '
+                        r'for publisher `/qos_overrides_chatter` with id `None`, are not valid: '
+                        r'expected qos depth less than 10\n\[ros2run\]: Process exited with '
+                        r'failure 1\n', bad_override.output), bad_override.output

@@ -4,13 +4,17 @@ demos run them: rclpy.init with clean Ctrl-C, then spin until stopped."""
 from __future__ import annotations
 
 import argparse
+import os
+import sys
 from collections.abc import Callable
 from typing import Any
 
 import rclpy
 from node_runtime.spinning import SIGNAL_CHECK_PERIOD, ros_session
 from rclpy.executors import SingleThreadedExecutor
+from rclpy.logging import get_logger
 from rclpy.node import Node
+from rclpy.qos_overriding_options import InvalidQosOverridesError
 from rclpy.timer import Timer
 from std_msgs.msg import String
 
@@ -101,7 +105,11 @@ def run(make_nodes: Callable[[SingleThreadedExecutor], list[Node]],
     may be removed from the executor and destroyed early; the rest are destroyed at the end."""
     with ros_session() as stop:
         executor = SingleThreadedExecutor()
-        nodes = make_nodes(executor)
+        try:
+            nodes = make_nodes(executor)
+        except InvalidQosOverridesError as error:  # a -p qos_overrides... value refused
+            get_logger(os.path.basename(sys.argv[0])).error(str(error))
+            return 1
         for node in nodes:
             executor.add_node(node)
         try:
