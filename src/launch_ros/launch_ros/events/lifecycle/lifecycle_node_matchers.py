@@ -1,12 +1,5 @@
-"""matches_node_name: the lifecycle_node_matcher of a ChangeState for one node."""
+"""matches_node_name, as upstream still offers it here (it lives in launch_ros.events)."""
 
-from __future__ import annotations
+from launch_ros.events.matchers import matches_node_name
 
-from collections.abc import Callable
-from typing import Any
-
-
-def matches_node_name(node_name: str) -> Callable[[Any], bool]:
-    """True for the LifecycleNode action whose node is `node_name` ('/' added if missing)."""
-    full = node_name if node_name.startswith('/') else '/' + node_name
-    return lambda action: action.node_name == full
+__all__ = ['matches_node_name']
