@@ -17,9 +17,11 @@ LIST_UNCONFIGURED = ('- configure [1]\n\tStart: unconfigured\n\tGoal: configurin
 
 def test_ros2_lifecycle_verbs_drive_lc_talker(launch, ros_env):
     talker = launch(argv=['ros2', 'run', 'lifecycle', 'lifecycle_talker'], env=ros_env)
+    # As on the page: `get` first (a named node is waited for while it is being discovered;
+    # `nodes` lists what is known at once).
+    assert ros2(ros_env, 'lifecycle', 'get', '/lc_talker').stdout == 'unconfigured [1]\n'
     nodes = ros2(ros_env, 'lifecycle', 'nodes')
     assert (nodes.returncode, nodes.stdout) == (0, '/lc_talker\n'), nodes.stderr
-    assert ros2(ros_env, 'lifecycle', 'get', '/lc_talker').stdout == 'unconfigured [1]\n'
     assert ros2(ros_env, 'lifecycle', 'list', 'lc_talker').stdout == LIST_UNCONFIGURED
     graph = ros2(ros_env, 'lifecycle', 'list', 'lc_talker', '-a').stdout
     assert graph.count('\n- ') + 1 == 25 and graph.endswith(
