@@ -20,6 +20,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_node_name(parser, optional=True)
 
 
+def runs_in_daemon(_args: argparse.Namespace) -> bool:
+    """A few service calls to the node: the daemon may run them for the CLI (daemon/proxy.py)."""
+    return True
+
 def main(args: argparse.Namespace) -> int | str:
     from lifecycle_msgs.srv import GetState
 

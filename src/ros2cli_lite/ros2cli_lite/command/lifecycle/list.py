@@ -21,6 +21,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='Display all existing transitions')
 
 
+def runs_in_daemon(_args: argparse.Namespace) -> bool:
+    """A few service calls to the node: the daemon may run them for the CLI (daemon/proxy.py)."""
+    return True
+
 def main(args: argparse.Namespace) -> int | str:
     from ros2cli_lite.node import cli_node
     wanted = absolute(args.node_name)

@@ -22,6 +22,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('transition', help='The lifecycle transition')
 
 
+def runs_in_daemon(_args: argparse.Namespace) -> bool:
+    """A few service calls to the node: the daemon may run them for the CLI (daemon/proxy.py)."""
+    return True
+
 def main(args: argparse.Namespace) -> int | str:
     from lifecycle_msgs.srv import ChangeState
 
