@@ -184,6 +184,11 @@ def _zstd() -> Any:
     return zstandard.ZstdCompressor()
 
 
+def _zstd_decompress(data: bytes) -> bytes:
+    import zstandard
+    return zstandard.ZstdDecompressor().decompress(bytes(data))
+
+
 def _compress_file(path: str, priority: int = 0) -> None:
     """`path` replaced by `path.zstd`, as rosbag2's file compression leaves it, compressed in
     a thread of its own whose nice value is `priority` (rosbag2's compression thread)."""
@@ -345,14 +350,25 @@ class BagReader:
 
     def messages(self, topics: set[str] | None = None, start_ns: int = 0
                  ) -> Iterator[tuple[str, int, bytes]]:
-        connections = [c for c in self.reader.connections
-                       if topics is None or c.topic in topics]
-        if not connections:
-            return
+        """(topic, receive stamp, data), file after file, each file in time order.
+
+        Each storage file is read with its own topics: rosbags' reader matches them with
+        metadata.yaml's by their QoS text too, which older bags (version 4 to 8, integer
+        policies) spell differently, and then it finds no message at all.
+        """
+        directory = self.reader.storage  # rosbags' DirectoryReader: one storage per file
+        message_compressed = directory.metadata.compression_mode == 'message'
         try:
-            for connection, stamp, data in self.reader.messages(
-                    connections=connections, start=start_ns or None):
-                yield connection.topic, stamp, bytes(data)
+            for storage in directory.storages:
+                connections = [c for c in storage.connections
+                               if topics is None or c.topic in topics]
+                if not connections:
+                    continue
+                for connection, stamp, data in storage.messages(connections,
+                                                                start_ns or None, None):
+                    if message_compressed:
+                        data = _zstd_decompress(data)
+                    yield connection.topic, stamp, bytes(data)
         except Exception as error:
             raise BagError(f"Bag '{self.path}' is damaged: {one_line(error)}; an MCAP bag can "
                            f"be salvaged with 'ros2 bag reindex {self.path}'") from None

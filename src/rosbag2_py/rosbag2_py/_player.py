@@ -144,7 +144,11 @@ class PlayerNode:
         try:
             self._create_endpoints(self._selected())
             self.log.info('Playback until timestamp: -1')
-            if not self.paused:  # a paused start leaves discovery the time until resumed
+            # A paused start leaves discovery the time until resumed; a bag with nothing to
+            # publish waits for nobody.
+            counts = {t.name: t.message_count for t in self.reader.meta.topics}
+            if not self.paused and any(counts.get(name) for name in
+                                       (*self.publishers, *self.clients)):
                 self._wait_for_subscribers()
             while True:
                 self._play_once(stop)

@@ -125,8 +125,11 @@ def main(args: argparse.Namespace) -> int | str:
     options = play_options(args)
     if isinstance(options, str):
         return options
+    from rosbag2_py._session import exit_now
+
     try:
         Player(args.log_level).play(*options)
+        result: int | str = 0
     except RuntimeError as failure:
-        return print_error(str(failure))
-    return 0
+        result = print_error(str(failure))
+    exit_now(result)  # the player's context is shut down: skip Fast DDS's static teardown
