@@ -67,7 +67,11 @@ def test_an_invalid_override_file_is_one_line_and_no_bag(ros_env, tmp_path):
     }
     for name, (text, message) in cases.items():
         (tmp_path / name).write_text(text)
-        for verb in (['record', '-a', '-o', str(tmp_path / 'never')], ['play', str(tmp_path)]):
+        # record reads the file as play does (ros2bag.api): play is checked with one case
+        verbs = [['record', '-a', '-o', str(tmp_path / 'never')]]
+        if name == 'policy.yaml':
+            verbs.append(['play', str(tmp_path)])
+        for verb in verbs:
             result = ros2(ros_env, 'bag', *verb, '--qos-profile-overrides-path',
                           str(tmp_path / name))
             assert result.returncode == 1 and result.stdout == '', result
