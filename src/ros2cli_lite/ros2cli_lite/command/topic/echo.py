@@ -7,6 +7,7 @@ import sys
 import time
 
 from ros2cli_lite.command.topic.api import lookup
+from ros2cli_lite.qos import add_qos_arguments
 
 HELP = 'Output messages from a topic'
 
@@ -15,6 +16,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('topic_name', help="Name of the ROS topic to listen to (e.g. '/chatter')")
     parser.add_argument('message_type', nargs='?',
                         help="Type of the ROS message (e.g. 'std_msgs/msg/String')")
+    add_qos_arguments(parser, 'subscribe', 'sensor_data')
     parser.add_argument('--once', action='store_true', help='Print the first message received and '
                         'then exit')
     parser.add_argument('--field', type=str, default=None,
@@ -23,20 +25,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         'style (not available with csv format)')
     parser.add_argument('--timeout', type=float, default=None,
                         help='Stop after this many seconds without a message (with --once)')
-
-
-def _echo_qos(node, topic: str):
-    from rclpy.qos import DurabilityPolicy, ReliabilityPolicy, qos_profile_sensor_data
-    qos = qos_profile_sensor_data
-    infos = node.get_publishers_info_by_topic(topic)
-    if infos:
-        from copy import copy
-        qos = copy(qos)
-        if all(i.qos_profile.reliability == ReliabilityPolicy.RELIABLE for i in infos):
-            qos.reliability = ReliabilityPolicy.RELIABLE
-        if all(i.qos_profile.durability == DurabilityPolicy.TRANSIENT_LOCAL for i in infos):
-            qos.durability = DurabilityPolicy.TRANSIENT_LOCAL
-    return qos
 
 
 def runs_in_daemon(args: argparse.Namespace) -> bool:
@@ -49,6 +37,7 @@ def main(args: argparse.Namespace) -> int | str:
     from ros2cli_lite.api import import_type
     from ros2cli_lite.convert import message_to_yaml, to_yaml
     from ros2cli_lite.node import cli_node, spin_once
+    from ros2cli_lite.qos import subscription_events, subscription_qos
     fields = args.field.split('.') if args.field else []
     with cli_node(spin_time=args.spin_time) as node:
         if args.message_type:
@@ -91,7 +80,8 @@ def main(args: argparse.Namespace) -> int | str:
             state['count'] += 1
 
         node.create_subscription(msg_type, args.topic_name, callback,
-                                 _echo_qos(node, args.topic_name))
+                                 subscription_qos(node, args),
+                                 event_callbacks=subscription_events(node, args.topic_name))
         deadline = None if args.timeout is None else time.monotonic() + args.timeout
         while not (args.once and state['count']) and state['error'] is None:
             if deadline is not None and time.monotonic() > deadline:

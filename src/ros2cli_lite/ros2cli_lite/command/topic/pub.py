@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import time
 
+from ros2cli_lite.qos import add_qos_arguments
+
 HELP = 'Publish a message to a topic'
 
 
@@ -32,6 +34,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='Keep publishing node alive for N seconds after the last msg '
                         '(default: 0.1)')
     parser.add_argument('-n', '--node-name', help='Name of the created publishing node')
+    add_qos_arguments(parser, 'publish', 'default')
 
 
 def runs_in_daemon(args: argparse.Namespace) -> bool:
@@ -41,11 +44,10 @@ def runs_in_daemon(args: argparse.Namespace) -> bool:
 
 
 def main(args: argparse.Namespace) -> int | str:
-    from rclpy.qos import QoSProfile
-
     from ros2cli_lite.api import import_type
     from ros2cli_lite.convert import populate
     from ros2cli_lite.node import cli_node, spin_once
+    from ros2cli_lite.qos import publisher_events, qos_profile_from_args
     try:
         msg_type = import_type(args.message_type, 'msg')
     except ValueError:
@@ -59,7 +61,9 @@ def main(args: argparse.Namespace) -> int | str:
     if wait_for is None:
         wait_for = 1 if times else 0
     with cli_node(args.node_name, spin_time=args.spin_time) as node:
-        publisher = node.create_publisher(msg_type, args.topic_name, QoSProfile(depth=10))
+        publisher = node.create_publisher(
+            msg_type, args.topic_name, qos_profile_from_args(args),
+            event_callbacks=publisher_events(node, args.topic_name))
         start = time.monotonic()
         last_note = None
         while publisher.get_subscription_count() < wait_for:

@@ -18,15 +18,19 @@ SIGNAL_CHECK_PERIOD = 0.1
 
 
 @contextmanager
-def ros_node(name: str) -> Iterator[tuple[Any, threading.Event]]:
+def ros_node(name: str, stop: threading.Event | None = None
+             ) -> Iterator[tuple[Any, threading.Event]]:
     """A node in its own context, with SIGINT/SIGTERM setting the yielded stop event."""
     import rclpy
     from rclpy.context import Context
     from rclpy.signals import SignalHandlerOptions
 
-    stop = threading.Event()
+    stop = stop or threading.Event()
+    # Signal handlers can only be set from the main thread: elsewhere (rosbag2_py's
+    # Recorder/Player run in a thread) cancel() sets the stop event.
+    main = threading.current_thread() is threading.main_thread()
     previous = {s: signal.signal(s, lambda _n, _f: stop.set())
-                for s in (signal.SIGINT, signal.SIGTERM)}
+                for s in (signal.SIGINT, signal.SIGTERM)} if main else {}
     context = Context()
     rclpy.init(args=[], context=context, signal_handler_options=SignalHandlerOptions.NO)
     node = rclpy.create_node(name, context=context)

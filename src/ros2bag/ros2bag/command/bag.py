@@ -1,4 +1,4 @@
-"""ros2 bag: record, play, info and reindex rosbag2 bags (one module per verb)."""
+"""ros2 bag: record, play, burst, info and reindex rosbag2 bags (ros2bag.verb.<verb>)."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ VERBS = {
     'play': 'Play back ROS data from a bag',
     'info': 'Print information about a bag to the screen',
     'reindex': 'Reconstruct metadata file for a bag',
+    'burst': 'Burst data from a bag',
 }
 
 
@@ -17,4 +18,4 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     verbs = parser.add_subparsers(title='Commands', metavar='Call')
     for name, help_text in VERBS.items():
         verb = verbs.add_parser(name, help=help_text, description=help_text)
-        importlib.import_module(f'ros2bag.{name}').add_arguments(verb)
+        importlib.import_module(f'ros2bag.verb.{name}').add_arguments(verb)

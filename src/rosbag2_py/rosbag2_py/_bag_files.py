@@ -9,13 +9,14 @@ warning (SIGKILL, power loss) loses at most that much; `reindex` then rebuilds t
 from __future__ import annotations
 
 import os
+import threading
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
-from ros2bag.definitions import full_text
-from ros2bag.metadata import (
+from rosbag2_py._definitions import full_text
+from rosbag2_py._metadata_io import (
     BagError,
     BagMetadata,
     TopicInfo,
@@ -28,6 +29,12 @@ from ros2bag.metadata import (
 )
 
 STORAGES = ('mcap', 'sqlite3')
+DEFAULT_STORAGE = 'mcap'
+COMPRESSION_MODES = ('', 'MESSAGE', 'FILE')
+COMPRESSION_FORMATS = ('zstd',)
+# Each storage's preset profiles (`--storage-preset-profile`): MCAP's compress its chunks with
+# zstd, SQLite3's `resilient` commits every write (rosbag2's presets of the same names).
+STORAGE_PRESETS = {'mcap': ('fastwrite', 'zstd_fast', 'zstd_small'), 'sqlite3': ('resilient',)}
 FLUSH_PERIOD = 0.5  # seconds: the most a SIGKILLed recorder can lose
 MCAP_CHUNK_SIZE = 768 * 1024  # mcap-cpp's default, which Jazzy's plugin keeps
 
@@ -52,12 +59,30 @@ class _FileStats:
 class BagWriter:
     """A rosbag2 directory being recorded: topics, messages, files, metadata.yaml."""
 
-    def __init__(self, uri: str, storage: str, max_bytes: int = 0, max_seconds: int = 0):
+    def __init__(self, uri: str, storage: str, max_bytes: int = 0, max_seconds: int = 0,
+                 compression_mode: str = '', compression_format: str = '', preset: str = ''):
+        storage = storage or DEFAULT_STORAGE
         if storage not in STORAGES:
-            raise BagError(f"Unknown storage '{storage}' (allowed: {', '.join(STORAGES)})")
+            raise BagError(f"Unknown storage id '{storage}' (allowed: {', '.join(STORAGES)})")
+        if preset and preset not in STORAGE_PRESETS[storage]:
+            raise BagError(f"Unknown storage preset profile '{preset}' for {storage} (allowed: "
+                           f"{', '.join(STORAGE_PRESETS[storage])})")
+        self.preset = preset
         if (max_bytes or max_seconds) and storage != 'mcap':
             raise BagError('Splitting (--max-bag-size/--max-bag-duration) is available with '
                            "'-s mcap' only here")
+        compression_mode = compression_mode.upper() if compression_mode else ''
+        if compression_mode == 'NONE':
+            compression_mode = ''
+        if compression_mode not in COMPRESSION_MODES:
+            raise BagError(f"Unknown compression mode '{compression_mode}' (allowed: none, "
+                           'message, file)')
+        if compression_mode and compression_format not in COMPRESSION_FORMATS:
+            raise BagError(f"Unknown compression format '{compression_format}' (allowed: "
+                           f"{', '.join(COMPRESSION_FORMATS)})")
+        self.compression_mode = compression_mode
+        self.compression_format = compression_format if compression_mode else ''
+        self.compression_priority = 0  # the nice value of the file compression thread
         self.uri = uri
         self.storage = storage
         self.max_bytes = max_bytes
@@ -83,7 +108,8 @@ class BagWriter:
         try:
             if self.storage == 'mcap':
                 name = f'{base}_{len(self.files)}.mcap'
-                self._backend = _McapFile(os.path.join(self.uri, name))
+                self._backend = _McapFile(os.path.join(self.uri, name),
+                                          self.preset.startswith('zstd'))
             else:
                 self._backend = _Sqlite3File(self.uri)
                 name = self._backend.name
@@ -110,11 +136,13 @@ class BagWriter:
             self._backend.close(self._metadata())
             self._open_file()
             current = self.files[-1]
+        if self.compression_mode == 'MESSAGE':
+            data = _zstd().compress(bytes(data))
         self._backend.write(self._handles[topic], data, recv_ns, send_ns, sequence)
         current.add(recv_ns)
         self.topics[topic].message_count += 1
         now = time.monotonic()
-        if now - self._last_flush >= FLUSH_PERIOD:
+        if now - self._last_flush >= FLUSH_PERIOD or self.preset == 'resilient':
             self.flush()
 
     def flush(self) -> None:
@@ -133,7 +161,8 @@ class BagWriter:
             starting_time_ns=start, duration_ns=end - start,
             message_count=sum(f.count for f in self.files),
             file_counts=[(f.path, f.start, f.end - f.start, f.count) for f in self.files],
-            custom_data=self.custom_data)
+            custom_data=self.custom_data, compression_format=self.compression_format,
+            compression_mode=self.compression_mode)
 
     def close(self) -> None:
         """Finish the storage file and write metadata.yaml (idempotent)."""
@@ -142,18 +171,55 @@ class BagWriter:
         self.closed = True
         meta = self._metadata()
         self._backend.close(meta)
+        if self.compression_mode == 'FILE':
+            for stats in self.files:
+                _compress_file(os.path.join(self.uri, stats.path), self.compression_priority)
+                stats.path += '.zstd'
+            meta = self._metadata()
         write_metadata_file(self.uri, meta)
+
+
+def _zstd() -> Any:
+    import zstandard
+    return zstandard.ZstdCompressor()
+
+
+def _zstd_decompress(data: bytes) -> bytes:
+    import zstandard
+    return zstandard.ZstdDecompressor().decompress(bytes(data))
+
+
+def _compress_file(path: str, priority: int = 0) -> None:
+    """`path` replaced by `path.zstd`, as rosbag2's file compression leaves it, compressed in
+    a thread of its own whose nice value is `priority` (rosbag2's compression thread)."""
+    failed: list[OSError] = []
+
+    def compress() -> None:
+        try:
+            if priority:
+                os.setpriority(os.PRIO_PROCESS, threading.get_native_id(), priority)
+            with open(path, 'rb') as source, open(path + '.zstd', 'wb') as target:
+                _zstd().copy_stream(source, target)
+            os.remove(path)
+        except OSError as error:
+            failed.append(error)
+
+    thread = threading.Thread(target=compress, name='rosbag2_compression')
+    thread.start()
+    thread.join()
+    if failed:
+        raise failed[0]
 
 
 class _McapFile:
     """One `.mcap` file written with the `mcap` library, channels as Jazzy's plugin makes them."""
 
-    def __init__(self, path: str):
+    def __init__(self, path: str, zstd_chunks: bool = False):
         from mcap.writer import CompressionType, Writer
 
         self.stream = open(path, 'xb')  # kept open until close()
-        self.writer = Writer(self.stream, chunk_size=MCAP_CHUNK_SIZE,
-                             compression=CompressionType.NONE)
+        self.writer = Writer(self.stream, chunk_size=MCAP_CHUNK_SIZE, compression=(
+            CompressionType.ZSTD if zstd_chunks else CompressionType.NONE))
         self.writer.start(profile='ros2', library='ros2bag (python mcap)')
         self.schemas: dict[str, int] = {}
 
@@ -284,14 +350,25 @@ class BagReader:
 
     def messages(self, topics: set[str] | None = None, start_ns: int = 0
                  ) -> Iterator[tuple[str, int, bytes]]:
-        connections = [c for c in self.reader.connections
-                       if topics is None or c.topic in topics]
-        if not connections:
-            return
+        """(topic, receive stamp, data), file after file, each file in time order.
+
+        Each storage file is read with its own topics: rosbags' reader matches them with
+        metadata.yaml's by their QoS text too, which older bags (version 4 to 8, integer
+        policies) spell differently, and then it finds no message at all.
+        """
+        directory = self.reader.storage  # rosbags' DirectoryReader: one storage per file
+        message_compressed = directory.metadata.compression_mode == 'message'
         try:
-            for connection, stamp, data in self.reader.messages(
-                    connections=connections, start=start_ns or None):
-                yield connection.topic, stamp, bytes(data)
+            for storage in directory.storages:
+                connections = [c for c in storage.connections
+                               if topics is None or c.topic in topics]
+                if not connections:
+                    continue
+                for connection, stamp, data in storage.messages(connections,
+                                                                start_ns or None, None):
+                    if message_compressed:
+                        data = _zstd_decompress(data)
+                    yield connection.topic, stamp, bytes(data)
         except Exception as error:
             raise BagError(f"Bag '{self.path}' is damaged: {one_line(error)}; an MCAP bag can "
                            f"be salvaged with 'ros2 bag reindex {self.path}'") from None
@@ -312,20 +389,30 @@ class BagReader:
 # Recovery
 # --------------------------------------------------------------------------------------
 
-def reindex(path: str) -> BagMetadata:
-    """Rebuild a bag whose recorder died: salvage each MCAP file up to its last whole record.
+def _storage_files(path: str, suffix: str) -> list[str]:
+    return sorted((n for n in os.listdir(path) if n.endswith(suffix)),
+                  key=lambda n: (len(n), n))
 
-    Reads every `.mcap` file of the directory with the `mcap` library's streaming reader,
-    stops at the first damaged record, rewrites the file completely with the `mcap` writer and
-    writes metadata.yaml from what was found.
+
+def reindex(path: str, storage: str = '') -> BagMetadata:
+    """Rebuild metadata.yaml of a bag whose recorder died (or that lost it).
+
+    MCAP: reads every `.mcap` file of the directory with the `mcap` library's streaming
+    reader, stops at the first damaged record, rewrites the file completely with the `mcap`
+    writer and writes metadata.yaml from what was found. SQLite3: counts what each `.db3`
+    file's tables hold.
     """
+    check_bag_path(path)
+    if storage not in ('', *STORAGES):
+        raise BagError(f"Unknown storage id '{storage}' (allowed: {', '.join(STORAGES)})")
+    if storage == 'sqlite3' or (not storage and not _storage_files(path, '.mcap')
+                                and _storage_files(path, '.db3')):
+        return _reindex_sqlite3(path)
+    names = _storage_files(path, '.mcap')
+    if not names:
+        raise BagError(f"'{path}' holds no .mcap or .db3 file: nothing to reindex")
     from mcap.stream_reader import StreamReader
 
-    check_bag_path(path)
-    names = sorted((n for n in os.listdir(path) if n.endswith('.mcap')),
-                   key=lambda n: (len(n), n))
-    if not names:
-        raise BagError(f"'{path}' holds no .mcap file: reindex rebuilds MCAP bags only")
     topics: dict[str, TopicInfo] = {}
     counts = []
     for name in names:
@@ -367,16 +454,62 @@ def reindex(path: str) -> BagMetadata:
             writer.finish()
         os.replace(salvaged, source)
         counts.append(stats)
+    return _write_reindexed(path, 'mcap', names, topics, counts)
+
+
+def _write_reindexed(path: str, storage: str, names: list[str], topics: dict[str, TopicInfo],
+                     counts: list[_FileStats]) -> BagMetadata:
     counted = [s for s in counts if s.count]
     start = min((s.start for s in counted), default=0)
     end = max((s.end for s in counted), default=0)
     meta = BagMetadata(
-        storage_identifier='mcap', relative_file_paths=names, topics=list(topics.values()),
+        storage_identifier=storage, relative_file_paths=names, topics=list(topics.values()),
         starting_time_ns=start, duration_ns=end - start,
         message_count=sum(s.count for s in counts),
         file_counts=[(s.path, s.start, s.end - s.start, s.count) for s in counts])
     write_metadata_file(path, meta)
     return meta
+
+
+def _reindex_sqlite3(path: str) -> BagMetadata:
+    import sqlite3
+
+    import yaml
+
+    names = _storage_files(path, '.db3')
+    if not names:
+        raise BagError(f"'{path}' holds no .db3 file: nothing to reindex")
+    topics: dict[str, TopicInfo] = {}
+    counts = []
+    for name in names:
+        stats = _FileStats(name)
+        try:
+            with sqlite3.connect(f'file:{os.path.join(path, name)}?mode=ro', uri=True) as db:
+                columns = [c[1] for c in db.execute('PRAGMA table_info(topics)')]
+                hashes = 'type_description_hash' in columns
+                rows = db.execute(
+                    'SELECT t.name, t.type, t.serialization_format, t.offered_qos_profiles, '
+                    + ('t.type_description_hash, ' if hashes else "'', ")
+                    + 'COUNT(m.id), MIN(m.timestamp), MAX(m.timestamp) FROM topics t '
+                    'LEFT JOIN messages m ON m.topic_id = t.id GROUP BY t.id').fetchall()
+        except sqlite3.Error as error:
+            raise BagError(f"Cannot reindex '{os.path.join(path, name)}': {error}") from None
+        for topic, type_name, fmt, qos, type_hash, count, first, last in rows:
+            try:
+                profiles = yaml.safe_load(qos) if qos else []
+            except yaml.YAMLError:
+                profiles = []
+            info = topics.setdefault(topic, TopicInfo(
+                name=topic, type=type_name, serialization_format=fmt,
+                offered_qos_profiles=profiles if isinstance(profiles, list) else [],
+                type_description_hash=type_hash or ''))
+            info.message_count += count
+            if count:
+                stats.add(first)
+                stats.add(last)
+                stats.count += count - 2
+        counts.append(stats)
+    return _write_reindexed(path, 'sqlite3', names, topics, counts)
 
 
 def _topic_of(channel: Any, schemas: dict[int, Any]) -> TopicInfo:

@@ -165,6 +165,8 @@ class BagMetadata:
     version: int = VERSION
     custom_data: dict[str, str] = field(default_factory=dict)
     bag_size: int = 0
+    compression_format: str = ''
+    compression_mode: str = ''
 
 
 def metadata_to_dict(meta: BagMetadata) -> dict:
@@ -183,8 +185,8 @@ def metadata_to_dict(meta: BagMetadata) -> dict:
                 'offered_qos_profiles': t.offered_qos_profiles,
                 'type_description_hash': t.type_description_hash,
             }, 'message_count': t.message_count} for t in meta.topics],
-        'compression_format': '',
-        'compression_mode': '',
+        'compression_format': meta.compression_format,
+        'compression_mode': meta.compression_mode,
         'relative_file_paths': list(meta.relative_file_paths),
         'files': [
             {'path': path, 'starting_time': {'nanoseconds_since_epoch': start},
@@ -288,7 +290,9 @@ def read_metadata_file(directory: str) -> BagMetadata:
             file_counts=files,
             ros_distro=str(info.get('ros_distro') or ''),
             version=version,
-            custom_data=dict(info.get('custom_data') or {}))
+            custom_data=dict(info.get('custom_data') or {}),
+            compression_format=str(info.get('compression_format') or ''),
+            compression_mode=str(info.get('compression_mode') or ''))
     except (KeyError, TypeError, ValueError, AttributeError, yaml.YAMLError) as error:
         raise BagError(f"'{path}' is not valid rosbag2 metadata (missing or bad field "
                        f'{one_line(error)})') from None

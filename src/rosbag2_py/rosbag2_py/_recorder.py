@@ -1,14 +1,12 @@
-"""ros2 bag record: subscribe to topics (and service event topics) and write them to a bag.
+"""The rosbag2_recorder node: discovery, raw subscriptions, pause, clean close.
 
 Messages are stored as the CDR bytes the middleware delivers (raw subscriptions), stamped
 with their reception time, as rosbag2 does. Topics are discovered every polling interval
-until every requested one is subscribed.
+until every requested one is subscribed. `rosbag2_py.Recorder` and `ros2 bag record` run it.
 """
 
 from __future__ import annotations
 
-import argparse
-import datetime
 import os
 import re
 import time
@@ -16,7 +14,8 @@ from typing import Any
 
 from ros2cli_lite.api import import_type, is_hidden
 
-from ros2bag.metadata import (
+from rosbag2_py._bag_files import BagWriter
+from rosbag2_py._metadata_io import (
     SERVICE_EVENT_SUFFIX,
     BagError,
     TopicInfo,
@@ -24,8 +23,7 @@ from ros2bag.metadata import (
     qos_to_dict,
     request_qos_for_offers,
 )
-from ros2bag.session import SpaceKey, exit_now, make_executor, ros_node, spin_until
-from ros2bag.storage import STORAGES, BagWriter
+from rosbag2_py._session import SpaceKey, make_executor, spin_until
 
 # Seconds a stopping recorder may spend recording what had arrived before the stop (each
 # queue holds up to 1000 messages: a recorder far behind loses the rest, and exits in time).
@@ -34,131 +32,33 @@ MATCH_BOUND = 2.0  # seconds a new subscription may take to match its publishers
 UNKNOWN_TOPIC_WARNING_AFTER = 5.0  # seconds without a requested topic before saying so
 
 
-def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument('-o', '--output', help='Destination of the bagfile to create, '
-                        'defaults to a timestamped folder in the current directory.')
-    parser.add_argument('-s', '--storage', default='mcap', choices=STORAGES,
-                        help="Storage identifier to be used, defaults to 'mcap'.")
-    topics = parser.add_mutually_exclusive_group()
-    topics.add_argument('topics_positional', type=str, default=[], metavar='[Topic ...]',
-                        nargs='*', help='Space-delimited list of topics to record.')
-    topics.add_argument('--topics', type=str, default=[], metavar='Topic', nargs='+',
-                        help='Space-delimited list of topics to record.')
-    parser.add_argument('--services', '--service', type=str, metavar='ServiceName', nargs='+',
-                        default=[], help='Space-delimited list of services to record.')
-    parser.add_argument('-a', '--all', action='store_true',
-                        help='Record all topics and services (Exclude hidden topic).')
-    parser.add_argument('--all-topics', action='store_true',
-                        help='Record all topics (Exclude hidden topic).')
-    parser.add_argument('--all-services', action='store_true',
-                        help='Record all services via service event topics.')
-    parser.add_argument('-e', '--regex', default='',
-                        help='Record only topics and services containing provided regular '
-                        'expression.')
-    parser.add_argument('--exclude-regex', '--exclude', default='',
-                        help='Exclude topics and services containing provided regular '
-                        'expression.')
-    parser.add_argument('--exclude-topics', type=str, metavar='Topic', nargs='+', default=[],
-                        help='Space-delimited list of topics not being recorded.')
-    parser.add_argument('--exclude-services', type=str, metavar='ServiceName', nargs='+',
-                        default=[], help='Space-delimited list of services not being recorded.')
-    parser.add_argument('--include-hidden-topics', action='store_true',
-                        help='Discover and record hidden topics as well.')
-    parser.add_argument('--no-discovery', action='store_true',
-                        help='Disables topic auto discovery during recording: only topics '
-                        'present at startup will be recorded.')
-    parser.add_argument('-p', '--polling-interval', type=int, default=100,
-                        help='Time in ms to wait between querying available topics for '
-                        'recording.')
-    parser.add_argument('-b', '--max-bag-size', type=int, default=0,
-                        help='Maximum size in bytes before the bagfile will be split. '
-                        'Default: 0, splitting is disabled.')
-    parser.add_argument('-d', '--max-bag-duration', type=int, default=0,
-                        help='Maximum duration in seconds before the bagfile will be split. '
-                        'Default: 0, splitting is disabled.')
-    parser.add_argument('--disable-keyboard-controls', action='store_true',
-                        help='disables keyboard controls for recorder')
-    parser.add_argument('--start-paused', action='store_true',
-                        help='Start the recorder in a paused state.')
-    parser.add_argument('--node-name', default='rosbag2_recorder',
-                        help='Specify the recorder node name. Default is rosbag2_recorder.')
-    parser.add_argument('--custom-data', type=str, metavar='KEY=VALUE', nargs='*', default=[],
-                        help='Space-delimited list of key=value pairs stored in the metadata.')
-    parser.set_defaults(_main=main)
-
-
 def _absolute(name: str) -> str:
     return name if name.startswith('/') else '/' + name
 
 
-def _validate(args: argparse.Namespace, uri: str) -> str | None:
-    """Jazzy's argument checks, with its messages ('[ERROR] [ros2bag]: ...')."""
-    topics = args.topics or args.topics_positional
-    if not (args.all or args.all_topics or args.all_services or args.services or topics
-            or args.regex):
-        return ('Need to specify at least one option out of --all, --all-topics, '
-                '--all-services, --services, --topics, --topic-types or --regex')
-    if args.exclude_topics and not (args.all or args.all_topics or args.regex):
-        return '--exclude-topics argument requires either --all, --all-topics or --regex'
-    if args.exclude_services and not (args.all or args.all_services or args.regex):
-        return '--exclude-services argument requires either --all, --all-services or --regex'
-    for pattern, flag in ((args.regex, '--regex'), (args.exclude_regex, '--exclude-regex')):
-        try:
-            re.compile(pattern)
-        except re.error as error:
-            return f"{flag}: '{pattern}' is not a valid regular expression ({error})"
-    if args.polling_interval <= 0:
-        return f'--polling-interval must be a positive number of ms, got {args.polling_interval}'
-    if args.max_bag_size < 0 or args.max_bag_duration < 0:
-        return '--max-bag-size and --max-bag-duration must be 0 (no split) or positive'
-    for pair in args.custom_data:
-        if '=' not in pair:
-            return f"--custom-data: '{pair}' is not KEY=VALUE"
-    if os.path.isdir(uri):
-        return f"Output folder '{uri}' already exists."
-    return None
+class RecorderNode:
+    """What a recording does with its node; `options` is a rosbag2_py.RecordOptions."""
 
-
-def main(args: argparse.Namespace) -> int | str:
-    uri = args.output or datetime.datetime.now().strftime('rosbag2_%Y_%m_%d-%H_%M_%S')
-    error = _validate(args, uri)
-    if error:
-        return f'[ERROR] [ros2bag]: {error}'
-    try:
-        writer = BagWriter(uri, args.storage, args.max_bag_size, args.max_bag_duration)
-    except BagError as failure:
-        return f'[ERROR] [ros2bag]: {failure}'
-    writer.custom_data = dict(pair.split('=', 1) for pair in args.custom_data)
-    with ros_node(args.node_name) as (node, stop):
-        result = Recorder(node, writer, args).run(stop)
-    # The bag is closed and the context shut down (its log files flushed): only static
-    # teardown is left, where Fast DDS's DomainParticipantFactory destructor sleeps 100 ms.
-    # Exit now, so that a `ros2 bag info` typed right after Ctrl-C meets a finished recorder.
-    exit_now(result)
-
-
-class Recorder:
-    """The rosbag2_recorder node: discovery, raw subscriptions, pause, clean close."""
-
-    def __init__(self, node: Any, writer: BagWriter, args: argparse.Namespace):
+    def __init__(self, node: Any, writer: BagWriter, options: Any):
         self.node = node
         self.log = node.get_logger()
         self.writer = writer
-        self.args = args
-        self.paused = args.start_paused
+        self.options = options
+        self.paused = options.start_paused
         self.failed: str | None = None
         self.subscriptions: dict[str, Any] = {}
         self.skipped: set[str] = set()
-        self.requested = [_absolute(t) for t in (args.topics or args.topics_positional)]
-        self.requested_services = [_absolute(s).rstrip('/') + SERVICE_EVENT_SUFFIX
-                                   for s in args.services]
-        self.all_topics = args.all or args.all_topics
-        self.all_services = args.all or args.all_services
-        self.exclude_topics = {_absolute(t) for t in args.exclude_topics}
-        self.exclude_services = {_absolute(s).rstrip('/') + SERVICE_EVENT_SUFFIX
-                                 for s in args.exclude_services}
-        self.regex = re.compile(args.regex) if args.regex else None
-        self.exclude_regex = re.compile(args.exclude_regex) if args.exclude_regex else None
+        self.requested = [_absolute(t) for t in options.topics]
+        self.requested_services = [_event_topic(s) for s in options.services]
+        self.all_topics = options.all_topics
+        self.all_services = options.all_services
+        self.topic_types = set(options.topic_types)
+        self.exclude_topic_types = set(options.exclude_topic_types)
+        self.exclude_topics = {_absolute(t) for t in options.exclude_topics}
+        self.exclude_services = {_event_topic(s) for s in options.exclude_service_events}
+        self.regex = re.compile(options.regex) if options.regex else None
+        self.exclude_regex = re.compile(options.exclude_regex) if options.exclude_regex else None
+        self.overrides = dict(options.topic_qos_profile_overrides)
         self.discovery_timer: Any = None
         self.discovery_done = False
         self.started = time.monotonic()
@@ -171,8 +71,10 @@ class Recorder:
         self.taken = 0  # messages taken from the middleware, recorded or not
 
     # ---- what to record ----
-    def _wanted(self, name: str) -> bool:
+    def _wanted(self, name: str, types: list[str]) -> bool:
         if self.exclude_regex and self.exclude_regex.search(name):
+            return False
+        if self.exclude_topic_types.intersection(types):
             return False
         if name.endswith(SERVICE_EVENT_SUFFIX):
             if name in self.exclude_services:
@@ -181,20 +83,20 @@ class Recorder:
                     or bool(self.regex and self.regex.search(name)))
         if name in self.exclude_topics:
             return False
-        if name in self.requested:
+        if name in self.requested or self.topic_types.intersection(types):
             return True
-        if is_hidden(name) and not self.args.include_hidden_topics:
+        if is_hidden(name) and not self.options.include_hidden_topics:
             return False
         return self.all_topics or bool(self.regex and self.regex.search(name))
 
     def _explicit_only(self) -> bool:
-        return not (self.all_topics or self.all_services or self.regex)
+        return not (self.all_topics or self.all_services or self.regex or self.topic_types)
 
     # ---- discovery ----
     def discover(self) -> None:
         new: dict[str, int] = {}
         for name, types in self.node.get_topic_names_and_types():
-            if name in self.subscriptions or name in self.skipped or not self._wanted(name):
+            if name in self.subscriptions or name in self.skipped or not self._wanted(name, types):
                 continue
             if len(types) != 1:
                 self.log.warn(f"Topic '{name}' has several types ({', '.join(types)}): "
@@ -260,9 +162,13 @@ class Recorder:
             stamp = time.time_ns()
             on_message(data, {'received_timestamp': stamp, 'source_timestamp': stamp})
 
+        qos = self.overrides.get(name)
+        if qos is not None:
+            self.log.info(f'Overriding subscription profile for {name}')
+        else:
+            qos = request_qos_for_offers(offers)
         self.subscriptions[name] = self.node.create_subscription(
-            msg_class, name, on_message_events if self.events else on_message,
-            request_qos_for_offers(offers), raw=True)
+            msg_class, name, on_message_events if self.events else on_message, qos, raw=True)
         self.log.info(f"Subscribed to topic '{name}'")
         return True
 
@@ -282,8 +188,8 @@ class Recorder:
         self.log.info('Pausing recording.' if self.paused else 'Resuming recording.')
 
     # ---- main loop ----
-    def run(self, stop: Any) -> int | str:
-        if not self.args.disable_keyboard_controls and self.keys.active:
+    def run(self, stop: Any) -> str | None:
+        if not self.options.disable_keyboard_controls and self.keys.active:
             self.log.info('Press SPACE for pausing/resuming')
             self.keys.start()
         self.log.info('Event publisher thread: Starting')
@@ -291,10 +197,10 @@ class Recorder:
         executor = make_executor(self.node, self.events)
         try:
             self.discover()
-            if not self.args.no_discovery and not self.discovery_done:
+            if not self.options.is_discovery_disabled and not self.discovery_done:
                 self.discovery_timer = self.node.create_timer(
-                    self.args.polling_interval / 1000.0, self.discover)
-            if self.args.start_paused:
+                    _seconds(self.options.topic_polling_interval), self.discover)
+            if self.options.start_paused:
                 self.log.info('Wait for recording: Press SPACE to start.')
             else:
                 self.log.info('Recording...')
@@ -320,8 +226,8 @@ class Recorder:
         if self.failed or closing_error:
             hint = f"; recorded so far: make space, then 'ros2 bag reindex {self.writer.uri}'" \
                 if closing_error and self.writer.storage == 'mcap' else ''
-            return f'[ERROR] [ros2bag]: {self.failed or closing_error}{hint}'
-        return 0
+            return f'{self.failed or closing_error}{hint}'
+        return None
 
     def _drain(self, stopped_ns: int) -> None:
         """Record what had arrived when the stop was seen (acknowledged to its publishers).
@@ -383,3 +289,16 @@ def _hash_string(value: Any) -> str:
         return ''
     return 'RIHS01_' + bytes(digest).hex()
 
+
+
+def _event_topic(service: str) -> str:
+    """A service's event topic; a name that already is one stays (RecordOptions holds those)."""
+    name = _absolute(service).rstrip('/')
+    return name if name.endswith(SERVICE_EVENT_SUFFIX) else name + SERVICE_EVENT_SUFFIX
+
+
+def _seconds(interval: Any) -> float:
+    """A polling interval given as datetime.timedelta (upstream) or in milliseconds."""
+    if hasattr(interval, 'total_seconds'):
+        return max(0.001, interval.total_seconds())
+    return max(0.001, float(interval) / 1000.0)

@@ -1,52 +1,17 @@
-"""ros2 bag info: a bag's metadata in Jazzy's layout (rosbag2_py's format_bag_meta_data).
-
-Unlike Jazzy, which reads metadata.yaml only, the storage files are opened too, so a
-truncated or corrupt file is reported here rather than half-way through `play`.
-"""
+"""A bag's metadata as text, in Jazzy's layout (rosbag2_py's format_bag_meta_data)."""
 
 from __future__ import annotations
 
-import argparse
 import time
 
-from ros2bag.metadata import (
-    BagError,
+from rosbag2_py._metadata_io import (
     BagMetadata,
     is_service_event_topic,
     service_name,
     service_type,
 )
-from ros2bag.storage import STORAGES, BagReader
 
 INDENT = 19  # the width of 'Topic information: '
-
-
-def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument('bag_path', help='Bag to open.')
-    parser.add_argument('-s', '--storage', default='', choices=STORAGES,
-                        help='Storage implementation of bag. By default attempts to detect '
-                        'automatically.')
-    parser.add_argument('-t', '--topic-name', action='store_true',
-                        help='Only display topic names.')
-    parser.add_argument('-v', '--verbose', action='store_true',
-                        help='Display request/response information for services')
-    parser.set_defaults(_main=main)
-
-
-def main(args: argparse.Namespace) -> int | str:
-    try:
-        reader = BagReader(args.bag_path)
-    except BagError as error:
-        return f'[ERROR] [ros2bag]: {error}'
-    reader.close()
-    meta = reader.meta
-    if args.topic_name and not args.verbose:
-        for topic in meta.topics:
-            if not is_service_event_topic(topic.name, topic.type):
-                print(topic.name)
-        return 0
-    print(format_metadata(meta))
-    return 0
 
 
 def _seconds(nanoseconds: int) -> str:

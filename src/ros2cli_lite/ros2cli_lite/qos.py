@@ -1,0 +1,167 @@
+"""QoS on the command line (ros2topic.api's helpers): `--qos-*` options, the profile they
+make, the profile `topic echo` adapts to the publishers, and ros2cli's incompatible-QoS
+warnings.
+
+The warnings are rclpy's default event callbacks' lines. A verb run by the daemon logs to the
+daemon's terminal, so there the same line goes to the verb's stderr, which reaches the CLI.
+"""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import sys
+import time
+from typing import Any
+
+# rclpy 7.1's short keys (QoSPresetProfiles.short_keys(), ...), written out: the CLI builds
+# its parser without importing rclpy (a verb the daemon runs never loads it); the test
+# tests/test_cli_qos.py checks them against rclpy's.
+PROFILES = ['unknown', 'default', 'system_default', 'sensor_data', 'services_default',
+            'parameters', 'parameter_events', 'action_status_default', 'best_available']
+HISTORY = ['system_default', 'keep_last', 'keep_all', 'unknown']
+RELIABILITY = ['system_default', 'reliable', 'best_effort', 'unknown', 'best_available']
+DURABILITY = ['system_default', 'transient_local', 'volatile', 'unknown', 'best_available']
+LIVELINESS = ['system_default', 'automatic', 'manual_by_topic', 'unknown', 'best_available']
+
+POLICY_OPTIONS = ('qos_depth', 'qos_history', 'qos_reliability', 'qos_durability',
+                  'qos_liveliness', 'qos_liveliness_lease_duration_seconds')
+
+
+def add_qos_arguments(parser: argparse.ArgumentParser, subscribe_or_publish: str,
+                      default_profile: str) -> None:
+    """ros2topic's --qos-profile, --qos-depth, --qos-history, --qos-reliability,
+    --qos-durability, --qos-liveliness, --qos-liveliness-lease-duration-seconds."""
+    verb = subscribe_or_publish
+    parser.add_argument(
+        '--qos-profile', choices=PROFILES, default=default_profile,
+        help=f'Quality of service preset profile to {verb} with (default: {default_profile})')
+    history = 'keep_last'  # the history of 'default' and 'sensor_data', the verbs' presets
+    parser.add_argument(
+        '--qos-depth', metavar='N', type=int,
+        help=f'Queue size setting to {verb} with (overrides depth value of --qos-profile '
+        'option)')
+    parser.add_argument(
+        '--qos-history', choices=HISTORY,
+        help=f'History of samples setting to {verb} with (overrides history value of '
+        f'--qos-profile option, default: {history})')
+    parser.add_argument(
+        '--qos-reliability', choices=RELIABILITY,
+        help=f'Quality of service reliability setting to {verb} with (overrides reliability '
+        'value of --qos-profile option, default: Compatible profile with running endpoints )')
+    parser.add_argument(
+        '--qos-durability', choices=DURABILITY,
+        help=f'Quality of service durability setting to {verb} with (overrides durability '
+        'value of --qos-profile option, default: Compatible profile with running endpoints )')
+    parser.add_argument(
+        '--qos-liveliness', choices=LIVELINESS,
+        help=f'Quality of service liveliness setting to {verb} with (overrides liveliness '
+        'value of --qos-profile option')
+    parser.add_argument(
+        '--qos-liveliness-lease-duration-seconds', type=float,
+        help=f'Quality of service liveliness lease duration setting to {verb} with '
+        '(overrides liveliness lease duration value of --qos-profile option')
+
+
+def policies_given(args: argparse.Namespace) -> bool:
+    return any(getattr(args, name, None) is not None for name in POLICY_OPTIONS)
+
+
+def qos_profile_from_args(args: argparse.Namespace) -> Any:
+    """The --qos-profile preset with the policies given on the command line (a copy: rclpy's
+    presets are shared objects)."""
+    from rclpy.duration import Duration
+    from rclpy.qos import (
+        QoSDurabilityPolicy,
+        QoSHistoryPolicy,
+        QoSLivelinessPolicy,
+        QoSPresetProfiles,
+        QoSReliabilityPolicy,
+    )
+
+    profile = copy.copy(QoSPresetProfiles.get_from_short_key(args.qos_profile))
+    if args.qos_history:
+        profile.history = QoSHistoryPolicy.get_from_short_key(args.qos_history)
+    if args.qos_durability:
+        profile.durability = QoSDurabilityPolicy.get_from_short_key(args.qos_durability)
+    if args.qos_reliability:
+        profile.reliability = QoSReliabilityPolicy.get_from_short_key(args.qos_reliability)
+    if args.qos_liveliness:
+        profile.liveliness = QoSLivelinessPolicy.get_from_short_key(args.qos_liveliness)
+    lease = args.qos_liveliness_lease_duration_seconds
+    if lease is not None and lease >= 0:
+        profile.liveliness_lease_duration = Duration(nanoseconds=int(lease * 1e9))
+    if args.qos_depth is not None and args.qos_depth >= 0:
+        profile.depth = args.qos_depth
+    elif profile.durability == QoSDurabilityPolicy.TRANSIENT_LOCAL and profile.depth == 0:
+        profile.depth = 1
+    return profile
+
+
+def subscription_qos(node: Any, args: argparse.Namespace) -> Any:
+    """`topic echo`'s profile: the options' when any policy is given, else the preset made
+    compatible with every publisher now on the topic (ros2topic's choose_qos)."""
+    from rclpy.qos import QoSDurabilityPolicy, QoSReliabilityPolicy
+
+    profile = qos_profile_from_args(args)
+    if policies_given(args):
+        return profile
+    infos = node.get_publishers_info_by_topic(args.topic_name)
+    if not infos:
+        return profile
+    reliable = sum(i.qos_profile.reliability == QoSReliabilityPolicy.RELIABLE for i in infos)
+    latched = sum(i.qos_profile.durability == QoSDurabilityPolicy.TRANSIENT_LOCAL
+                  for i in infos)
+    if reliable == len(infos):
+        profile.reliability = QoSReliabilityPolicy.RELIABLE
+    else:
+        if reliable:
+            print('Some, but not all, publishers are offering QoSReliabilityPolicy.RELIABLE. '
+                  'Falling back to QoSReliabilityPolicy.BEST_EFFORT as it will connect to all '
+                  'publishers')
+        profile.reliability = QoSReliabilityPolicy.BEST_EFFORT
+    if latched == len(infos):
+        profile.durability = QoSDurabilityPolicy.TRANSIENT_LOCAL
+    else:
+        if latched:
+            print('Some, but not all, publishers are offering '
+                  'QoSDurabilityPolicy.TRANSIENT_LOCAL. Falling back to '
+                  'QoSDurabilityPolicy.VOLATILE as it will connect to all publishers')
+        profile.durability = QoSDurabilityPolicy.VOLATILE
+    return profile
+
+
+def _warn(node: Any, text: str) -> None:
+    from ros2cli_lite.daemon.proxy import session
+
+    logger = node.get_logger()
+    if session() is None:
+        logger.warn(text)
+    else:
+        print(f'[WARN] [{time.time():.9f}] [{logger.name}]: {text}', file=sys.stderr, flush=True)
+
+
+def subscription_events(node: Any, topic: str) -> Any:
+    """rclpy's default incompatible-QoS warning of a subscription, seen by the CLI."""
+    from rclpy.event_handler import SubscriptionEventCallbacks
+    from rclpy.qos import qos_policy_name_from_kind
+
+    def incompatible(event: Any) -> None:
+        _warn(node, f"New publisher discovered on topic '{topic}', offering incompatible QoS. "
+              'No messages will be received from it. Last incompatible policy: '
+              f'{qos_policy_name_from_kind(event.last_policy_kind)}')
+
+    return SubscriptionEventCallbacks(incompatible_qos=incompatible)
+
+
+def publisher_events(node: Any, topic: str) -> Any:
+    """rclpy's default incompatible-QoS warning of a publisher, seen by the CLI."""
+    from rclpy.event_handler import PublisherEventCallbacks
+    from rclpy.qos import qos_policy_name_from_kind
+
+    def incompatible(event: Any) -> None:
+        _warn(node, f"New subscription discovered on topic '{topic}', requesting incompatible "
+              'QoS. No messages will be sent to it. Last incompatible policy: '
+              f'{qos_policy_name_from_kind(event.last_policy_kind)}')
+
+    return PublisherEventCallbacks(incompatible_qos=incompatible)
