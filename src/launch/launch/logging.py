@@ -90,3 +90,27 @@ def start_log_file() -> None:
 def process_output(name: str, line: str, screen: bool) -> None:
     """One line a child wrote: `[name] line` on the screen when `screen`, always in the file."""
     _write(f'[{name}] {line}', screen=screen)
+
+
+class _LaunchConfig:
+    """Upstream's `launch.logging.launch_config`: the log directory and the level."""
+
+    @property
+    def log_dir(self) -> str:
+        return log_dir()
+
+    @log_dir.setter
+    def log_dir(self, path: str) -> None:
+        global _log_dir
+        _log_dir = path
+
+    @property
+    def level(self) -> int:
+        return _level
+
+    @level.setter
+    def level(self, new_level: int) -> None:
+        set_level(new_level)
+
+
+launch_config = _LaunchConfig()

@@ -6,11 +6,48 @@ arguments may be quoted and may hold substitutions themselves.
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from launch.frontend.entity import FrontendError
 from launch.frontend.expose import instantiate_substitution
-from launch.substitution import Substitution, TextSubstitution
+from launch.substitution import Substitution
+from launch.substitutions.text_substitution import TextSubstitution
+
+
+def replace_escaped_characters(data: str) -> str:
+    """`\\x` is a literal x (so `\\$(` is not a substitution)."""
+    return re.sub(r'\\(.)', r'\1', data)
+
+
+def parse_substitution(string_value: str) -> list[Substitution]:
+    """The substitutions of a text (upstream's name); empty text is one empty text."""
+    if not string_value:
+        return [TextSubstitution(text=string_value)]
+    return parse_substitutions(string_value)
+
+
+def parse_if_substitutions(value: Any) -> Any:
+    """Text with substitutions as substitutions, plain text as text, anything else as is.
+
+    A list is done item by item and must be uniform (all text, or all one type).
+    """
+    kinds: set[type] = set()
+
+    def one(item: Any) -> Any:
+        if isinstance(item, str):
+            output = parse_substitution(item)
+            if len(output) == 1 and isinstance(output[0], TextSubstitution):
+                kinds.add(str)
+                return output[0].text
+            return output
+        kinds.add(type(item))
+        return item
+
+    output = [one(item) for item in value] if isinstance(value, list) else one(value)
+    if len(kinds) > 1:
+        raise ValueError('The result is a non-uniform list')
+    return output
 
 
 def parse_substitutions(text: Any) -> list[Substitution]:
@@ -36,6 +73,10 @@ def _parse_text(text: str, i: int, stop: str | None) -> tuple[list[Substitution]
             continue
         if stop is not None and text[i] in stop:
             break
+        if text[i] == '\\' and i + 1 < len(text):
+            literal += text[i + 1]
+            i += 2
+            continue
         literal += text[i]
         i += 1
     if literal:
