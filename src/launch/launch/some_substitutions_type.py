@@ -7,4 +7,4 @@ from launch.substitution import Substitution
 
 SomeSubstitutionsType = (str | pathlib.PurePath | Substitution
                          | Iterable[str | pathlib.PurePath | Substitution])
-SomeSubstitutionsType_types_tuple = (str, pathlib.PurePath, Substitution)
+SomeSubstitutionsType_types_tuple = (str, pathlib.PurePath, Substitution, Iterable)

@@ -17,9 +17,6 @@ class Substitution:
     def describe(self) -> str:
         return f'{type(self).__name__}()'
 
-    def __repr__(self) -> str:
-        return self.describe()
-
 
 def describe(subs: list[Substitution]) -> str:
     """A list of substitutions as text for --print and error messages."""

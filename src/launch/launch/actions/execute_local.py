@@ -12,6 +12,7 @@ from __future__ import annotations
 import asyncio
 import ctypes
 import io
+import logging
 import os
 import pty
 import signal
@@ -30,7 +31,7 @@ from launch.events.process import (
     ShutdownProcess,
     SignalProcess,
 )
-from launch.logging import get_logger, process_output
+from launch.logging import get_logger, get_output_loggers
 from launch.substitutions.launch_configuration import LaunchConfiguration
 from launch.utilities import (
     is_a_subclass,
@@ -45,7 +46,6 @@ if TYPE_CHECKING:
     from launch.launch_description_entity import LaunchDescriptionEntity
 
 _PR_SET_PDEATHSIG = 1
-_OUTPUTS = ('screen', 'log', 'both', 'own_log', 'full')
 # Default escalation delays: the launch arguments of these names, else 5 s (upstream).
 _SIGTERM_TIMEOUT = LaunchConfiguration('sigterm_timeout', default=5)
 _SIGKILL_TIMEOUT = LaunchConfiguration('sigkill_timeout', default=5)
@@ -190,7 +190,8 @@ class ExecuteLocal(Action):
             output = override
         elif not isinstance(output, dict):
             output = perform_substitutions(context, output)
-        self._screen_stdout, self._screen_stderr = _screen_streams(output)
+        self._stdout_logger, self._stderr_logger = get_output_loggers(
+            description.final_name, output)
 
     # -- running --------------------------------------------------------------------------
     def execute(self, context: LaunchContext) -> None:
@@ -281,9 +282,9 @@ class ExecuteLocal(Action):
         await context.emit_event(ProcessStarted(**event_args))
         readers = [
             asyncio.ensure_future(self._forward(context, out_read, ProcessStdout, event_args,
-                                                self._screen_stdout, self.__stdout_buffer)),
+                                                self._stdout_logger, self.__stdout_buffer)),
             asyncio.ensure_future(self._forward(context, err_read, ProcessStderr, event_args,
-                                                self._screen_stderr, self.__stderr_buffer)),
+                                                self._stderr_logger, self.__stderr_buffer)),
         ]
         if self._stopping:  # shutdown came while the process was starting
             self._signal(signal.SIGINT, quiet=True)
@@ -304,13 +305,13 @@ class ExecuteLocal(Action):
         return code
 
     async def _forward(self, context: LaunchContext, fd: int, event_type: type,
-                       event_args: dict[str, Any], screen: bool, cache: io.StringIO) -> None:
+                       event_args: dict[str, Any], logger: logging.Logger,
+                       cache: io.StringIO) -> None:
         """Read a child's stream; each line goes out prefixed with the process name."""
         loop = asyncio.get_running_loop()
         reader = asyncio.StreamReader(limit=1 << 20)
         transport, _ = await loop.connect_read_pipe(
             lambda: asyncio.StreamReaderProtocol(reader), os.fdopen(fd, 'rb', 0))
-        name = event_args['name']
         try:
             while True:
                 try:
@@ -323,7 +324,8 @@ class ExecuteLocal(Action):
                 line = raw.decode(errors='replace')
                 if self.__cached_output:
                     cache.write(line)
-                process_output(name, line.rstrip('\n').rstrip('\r'), screen)
+                logger.info(self.__output_format.format(line=line.rstrip('\n').rstrip('\r'),
+                                                        this=self))
         finally:
             transport.close()
 
@@ -397,20 +399,6 @@ def _seconds(text: str, what: str) -> float:
     if value < 0:
         raise ValueError(f"{what} must not be negative, got '{text}'")
     return value
-
-
-def _screen_streams(output: Any) -> tuple[bool, bool]:
-    """(stdout on screen?, stderr on screen?) for an `output` setting, as upstream routes it."""
-    if isinstance(output, dict):
-        return (output.get('stdout', 'log') in ('screen', 'both'),
-                output.get('stderr', 'log') in ('screen', 'both'))
-    if output not in _OUTPUTS:
-        raise ValueError(f"output must be one of {list(_OUTPUTS)}, got '{output}'")
-    if output in ('screen', 'both'):
-        return True, True
-    if output == 'log':
-        return False, True  # upstream: stdout to the log file, stderr to both
-    return False, False
 
 
 def _stream(tty: bool) -> tuple[int, int]:

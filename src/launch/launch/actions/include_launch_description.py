@@ -100,7 +100,7 @@ class IncludeLaunchDescription(Action):
             names = list(given)
             for include in includes or []:
                 names.extend(include._try_get_arguments_names_without_context())
-            if argument.name not in names and argument.name not in context.launch_configurations:
+            if argument.name not in names:
                 raise RuntimeError(f"Included launch description missing required argument "
                                    f"'{argument.name}' (description: "
                                    f"'{argument.description}'), given: [{', '.join(names)}]")

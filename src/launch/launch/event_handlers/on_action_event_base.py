@@ -36,9 +36,9 @@ class OnActionEventBase(BaseEventHandler):
                 return False
             if action_matcher is None:
                 return True
-            if isinstance(action_matcher, target_action_cls):
-                return event.action is action_matcher
-            return action_matcher(event.action)
+            if callable(action_matcher):
+                return action_matcher(event.action)
+            return event.action is action_matcher
 
         super().__init__(matcher=matcher, **kwargs)
         self.__entities: list[LaunchDescriptionEntity] = []

@@ -60,7 +60,9 @@ def parse_substitutions(text: Any) -> list[Substitution]:
     return _parse_text(text, 0, stop=None)[0]
 
 
-def _parse_text(text: str, i: int, stop: str | None) -> tuple[list[Substitution], int]:
+def _parse_text(text: str, i: int, stop: str | None, quote: str | None = None
+                ) -> tuple[list[Substitution], int]:
+    """Text up to a `stop` character; `quote`: the quoted argument this text is inside."""
     parts: list[Substitution] = []
     literal = ''
     while i < len(text):
@@ -68,7 +70,7 @@ def _parse_text(text: str, i: int, stop: str | None) -> tuple[list[Substitution]
             if literal:
                 parts.append(TextSubstitution(text=literal))
                 literal = ''
-            sub, i = _parse_call(text, i + 2)
+            sub, i = _parse_call(text, i + 2, quote)
             parts.append(sub)
             continue
         if stop is not None and text[i] in stop:
@@ -84,7 +86,9 @@ def _parse_text(text: str, i: int, stop: str | None) -> tuple[list[Substitution]
     return parts, i
 
 
-def _parse_call(text: str, i: int) -> tuple[Substitution, int]:
+def _parse_call(text: str, i: int, quote: str | None) -> tuple[Substitution, int]:
+    """`name args...)`; inside a quoted argument, the arguments of a nested substitution
+    are not quoted again: a quote of the other kind is a plain character there."""
     start = i
     while i < len(text) and not text[i].isspace() and text[i] != ')':
         i += 1
@@ -98,12 +102,11 @@ def _parse_call(text: str, i: int) -> tuple[Substitution, int]:
         if text[i] == ')':
             i += 1
             break
-        if text[i] in '\'"':
-            quote = text[i]
-            arg, i = _parse_text(text, i + 1, stop=quote)
+        if quote is None and text[i] in '\'"':
+            arg, i = _parse_text(text, i + 1, stop=text[i], quote=text[i])
             i += 1
         else:
-            arg, i = _parse_text(text, i, stop=' \t\n)')
+            arg, i = _parse_text(text, i, stop=' \t\n)' + (quote or ''), quote=quote)
         args.append(arg)
     return instantiate_substitution(name, args), i
 

@@ -38,7 +38,10 @@ class InvalidFrontendLaunchFileError(InvalidLaunchFileError):
 
 
 def _entry_points(group: str) -> list[Any]:
-    return list(importlib_metadata.entry_points(group=group))
+    found = importlib_metadata.entry_points()
+    if hasattr(found, 'select'):
+        return list(found.select(group=group))
+    return list(found.get(group, []))
 
 
 class Parser:

@@ -7,6 +7,7 @@ rules ('1' is an int, 'true' a bool), except that a bool also takes '1' and '0'.
 from __future__ import annotations
 
 import collections.abc
+import typing
 from typing import TYPE_CHECKING, Any
 
 import yaml
@@ -22,7 +23,9 @@ if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
 ScalarTypesTuple = (int, float, bool, str)
-ListTypesTuple = (list[int], list[float], list[bool], list[str])
+# typing.List itself (not the builtin list) is what names a list type in upstream's API.
+_TypingList = typing.List  # noqa: UP006
+ListTypesTuple = (_TypingList[int], _TypingList[float], _TypingList[bool], _TypingList[str])
 AllowedTypesTuple = ScalarTypesTuple + ListTypesTuple
 ScalarTypesType = type
 ListTypesType = Any
@@ -46,7 +49,8 @@ _TYPES_ALLOWED = ('int, float, str, bool, List[int], List[float], List[str], Lis
 
 def is_typing_list(data_type: Any) -> bool:
     """True for typing.List and List[X]."""
-    return data_type is list or getattr(data_type, '__origin__', None) in (list, list)
+    return data_type is _TypingList or getattr(data_type, '__origin__', None) in (
+        list, _TypingList)
 
 
 def is_valid_scalar_type(data_type: Any) -> bool:
