@@ -34,12 +34,10 @@ class Entity(BaseEntity):
     def children(self) -> list[Entity]:
         self.__children_called = True
         if isinstance(self.__element, dict):
-            if 'children' not in self.__element:
-                raise ValueError(f'Expected entity `{self.__type_name}` to have children '
-                                 'entities.That can be a list of subentities or a dictionary '
-                                 'with a `children` list element')
+            # A mapping without `children` has none (upstream raises; an action that looks
+            # for nested tags of its own must not fail on a childless one).
             self.__read_keys.add('children')
-            children = self.__element['children']
+            children = self.__element.get('children') or []
         elif isinstance(self.__element, list):
             children = self.__element
         else:

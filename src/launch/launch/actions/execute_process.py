@@ -123,7 +123,8 @@ class ExecuteProcess(ExecuteLocal):
     def parse_process_options(cls, entity: Entity) -> dict[str, Any]:
         """The process attributes of a tag (this workspace's older spelling of parse())."""
         from launch.frontend.parser import Parser
-        _, kwargs = cls.parse(entity, Parser(), ignore=['cmd', 'name'])
+        # ExecuteProcess's own parse, whatever a subclass's parse() takes.
+        _, kwargs = ExecuteProcess.parse.__func__(cls, entity, Parser(), ignore=['cmd', 'name'])
         return kwargs
 
     @property
