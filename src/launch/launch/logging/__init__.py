@@ -208,16 +208,18 @@ class _FileFormatter(logging.Formatter):
 launch_config = LaunchConfig()
 
 
-def _install_root_handlers() -> None:
-    root = logging.root
-    for handler in (launch_config.get_screen_handler(), launch_config.get_log_file_handler()):
-        if handler not in root.handlers:
-            root.addHandler(handler)
-
-
 def get_logger(name: str | None = None) -> logging.Logger:
-    """A logger shown as `[LEVEL] [name]: message` (through the root logger's handlers)."""
-    return logging.getLogger(name or 'launch')
+    """A logger shown as `[LEVEL] [name]: message` on the screen and in launch.log.
+
+    It has both handlers itself and does not propagate (as upstream's LaunchLogger), so
+    'launch.user' is not printed again by 'launch'.
+    """
+    logger = logging.getLogger(name)
+    logger.propagate = False
+    for handler in (launch_config.get_screen_handler(), launch_config.get_log_file_handler()):
+        if handler not in logger.handlers:
+            logger.addHandler(handler)
+    return logger
 
 
 def _destinations(output: str | dict[str, Any]) -> dict[str, set[str]]:
@@ -290,16 +292,16 @@ def get_output_loggers(process_name: str, output_config: str | dict[str, Any]
 
 
 def reset() -> None:
-    """Back to the start: no handlers and no levels of their own on any logger, level INFO,
-    default formats, no log directory yet."""
+    """Back to the start: launch's loggers without handlers or levels of their own, level
+    INFO, default formats, no log directory yet."""
     for logger in [logging.root, *logging.Logger.manager.loggerDict.values()]:
-        if not isinstance(logger, logging.Logger):
-            continue  # a placeholder of the logger tree
-        for handler in list(logger.handlers):
-            logger.removeHandler(handler)
-        if logger is not logging.root:
-            logger.setLevel(logging.NOTSET)
-            logger.propagate = True
+        if isinstance(logger, logging.Logger) and (logger is logging.root
+                                                   or not logger.propagate):
+            # propagate is off on the loggers launch configured (get_logger, output loggers)
+            if logger is not logging.root:
+                logger.setLevel(logging.NOTSET)
+            for handler in list(logger.handlers):
+                logger.removeHandler(handler)
     launch_config.reset()
 
 
@@ -323,5 +325,5 @@ def level_name() -> str:
 
 
 def start_log_file() -> None:
-    """Show launch's logs on the screen and in launch.log (called as a launch starts)."""
-    _install_root_handlers()
+    """Open launch.log now (a launch says where it is as it starts)."""
+    get_logger('launch')
