@@ -11,22 +11,28 @@ from __future__ import annotations
 import importlib
 import io
 import os
+import re
 import sys
 import threading
 import time
+import xml.etree.ElementTree as ElementTree
 
 import launch.logging
 import pytest
 from launch.actions import (
     DeclareLaunchArgument,
+    ExecuteLocal,
     ExecuteProcess,
+    GroupAction,
     IncludeLaunchDescription,
     LogInfo,
     RegisterEventHandler,
+    SetEnvironmentVariable,
     Shutdown,
     TimerAction,
 )
-from launch.event_handlers import OnShutdown
+from launch.descriptions import Executable
+from launch.event_handlers import OnProcessExit, OnShutdown
 from launch.events import IncludeLaunchDescription as IncludeEvent
 from launch.events import Shutdown as ShutdownEvent
 from launch.events.process import ProcessExited
@@ -37,6 +43,7 @@ from launch.substitutions import (
     AndSubstitution,
     AnySubstitution,
     Command,
+    EnvironmentVariable,
     EqualsSubstitution,
     FileContent,
     IfElseSubstitution,
@@ -48,6 +55,7 @@ from launch.substitutions import (
     PythonExpression,
     SubstitutionFailure,
 )
+from launch_xml.entity import Entity as XmlEntity
 
 from launch import Event, LaunchContext, LaunchDescription, LaunchService
 
@@ -162,6 +170,50 @@ def test_xml_and_yaml_read_from_streams(capsys):
         root, parser = Parser.load(stream)
         assert run(parser.parse_description(root)) == 0
     assert user_lines(capsys.readouterr().out) == ['fast=yes area=4', 'differ=true']
+
+
+def test_frontend_timers_lists_and_nested_quotes(capsys, monkeypatch):
+    monkeypatch.setenv('API_TEST_DEFAULT', 'dflt')
+    xml = io.StringIO(
+        '<launch>'
+        '<let name="wait" value="0.1"/>'
+        '<timer period="$(var wait)"><log message="timer fired"/></timer>'
+        '<log message="$(env \'$(var wait)_unset\' \'$(env API_TEST_DEFAULT)_x\')"/>'
+        '<executable cmd="echo \'a  b\' c" output="screen"/>'
+        '</launch>')
+    root, parser = Parser.load(xml)
+    assert run(parser.parse_description(root)) == 0
+    out = capsys.readouterr().out
+    assert user_lines(out) == ['dflt_x', 'timer fired']
+    assert re.search(r'^\[echo-\d+\] a  b c$', out, re.MULTILINE), out
+    # `name-sep` makes a list of an XML attribute
+    entity = XmlEntity(ElementTree.fromstring('<x v="1;2;3" v-sep=";"/>'))
+    assert entity.get_attr('v', data_type=list[int]) == [1, 2, 3]
+    entity.assert_entity_completely_parsed()
+
+
+def test_execute_local_environment_and_callable_targets(capsys, monkeypatch):
+    monkeypatch.setenv('API_TEST_OUTER', 'outer')
+    script = 'import os; print(os.environ.get("API_TEST_OUTER"), os.environ["API_TEST_MORE"])'
+    clean = ExecuteLocal(process_description=Executable(
+        cmd=[sys.executable, '-c', script], env={'API_TEST_MORE': 'given'}), output='screen')
+    inherit = ExecuteLocal(process_description=Executable(
+        cmd=[sys.executable, '-c', script], additional_env={'API_TEST_MORE': 'added'}),
+        output='screen')
+    assert run(LaunchDescription([
+        RegisterEventHandler(OnProcessExit(
+            target_action=lambda action: action is clean,
+            on_exit=[LogInfo(msg=['clean exited, outer is ',
+                                  EnvironmentVariable('API_TEST_OUTER')])])),
+        GroupAction([SetEnvironmentVariable('API_TEST_OUTER', 'in group'), clean]),
+        inherit,
+    ])) == 0
+    out = capsys.readouterr().out
+    assert '] None given' in out and '] outer added' in out, out
+    # the group's change was undone when it ended (the environment is os.environ)
+    assert user_lines(out) == ['clean exited, outer is outer']
+    assert os.environ['API_TEST_OUTER'] == 'outer'
+    assert clean.process_details['env'] == {'API_TEST_MORE': 'given'}
 
 
 def test_description_included_from_another_thread(capsys):

@@ -88,3 +88,18 @@ def test_launch_prefix_filter_and_debug(ros_env, tmp_path):
     assert '--launch-prefix must be specified if --launch-prefix-filter is provided' in (
         lone_filter.stdout + lone_filter.stderr)
     assert 'Traceback' not in lone_filter.stdout + lone_filter.stderr
+
+
+def test_screen_and_log_formats_from_the_environment(ros_env, tmp_path):
+    launch_file = write(tmp_path / 'say.launch.xml', '''
+        <launch><log message="formatted"/></launch>
+        ''')
+    env = {**ros_env, 'OVERRIDE_LAUNCH_SCREEN_FORMAT': '{levelname}|{name}|{message}',
+           'OVERRIDE_LAUNCH_LOG_FORMAT': 'file:{message}', 'ROS_LOG_DIR': str(tmp_path / 'l')}
+    run = ros2(env, 'launch', str(launch_file))
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert 'INFO|launch.user|formatted' in run.stdout.splitlines(), run.stdout
+    (log_file,) = [path for path in (tmp_path / 'l').glob('*/launch.log')
+                   if path.parent.name != 'latest']
+    assert 'file:formatted' in log_file.read_text().splitlines()
+    assert (tmp_path / 'l' / 'latest').resolve() == log_file.parent
