@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import asyncio
 import collections.abc
+import concurrent.futures
 import contextlib
 import ctypes
 import logging
@@ -92,17 +93,22 @@ class LaunchService:
 
     def emit_event(self, event: Event) -> None:
         """Emit an event, from any thread: queued until the launch runs, when it does not yet."""
-        future = None
         with self.__loop_lock:
             loop = self.__loop_from_run_thread
-            if loop is None:
+            if loop is None or _running_in(loop):
                 self.__context.emit_event_sync(event)
-            elif _running_in(loop):
-                self.__context.emit_event_sync(event)
-            else:
-                future = asyncio.run_coroutine_threadsafe(self.__context.emit_event(event), loop)
-        if future is not None:
-            future.result()
+                return
+            future = asyncio.run_coroutine_threadsafe(self.__context.emit_event(event), loop)
+        # Wait for the loop to take it, but not forever: a launch that ends meanwhile never
+        # will (its event was too late anyway).
+        while True:
+            try:
+                future.result(timeout=0.1)
+                return
+            except concurrent.futures.TimeoutError:
+                if self.__loop_from_run_thread is not loop:
+                    future.cancel()
+                    return
 
     def include_launch_description(self, launch_description: LaunchDescription) -> None:
         """Visit a launch description (thread-safe: through an IncludeLaunchDescription event)."""
@@ -116,8 +122,10 @@ class LaunchService:
         with self.__loop_lock:
             if self.__loop_from_run_thread is None:
                 return None
-            return self._shutdown(reason='LaunchService.shutdown() called',
-                                  due_to_sigint=False, force_sync=bool(force_sync))
+        # Not under the lock: from another thread this waits for the loop, which may need
+        # the lock to finish its run.
+        return self._shutdown(reason='LaunchService.shutdown() called', due_to_sigint=False,
+                              force_sync=bool(force_sync))
 
     def run(self, *, shutdown_when_idle: bool = True) -> int:
         """Run until done; the return code is 1 when the launch itself failed, else 0."""
