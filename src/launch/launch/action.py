@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
 from launch.launch_description_entity import LaunchDescriptionEntity
@@ -14,45 +15,74 @@ if TYPE_CHECKING:
 
 
 class Action(LaunchDescriptionEntity):
-    def __init__(self, *, condition: Condition | None = None, **unsupported: object) -> None:
-        if unsupported:
-            # Names what an upstream launch file asked for that this launch does not have.
-            raise TypeError(f"{type(self).__name__}: argument '{sorted(unsupported)[0]}' is "
-                            'not supported by this launch (see docs/launch.md)')
+    def __init__(self, *, condition: Condition | None = None) -> None:
         self.__condition = condition
 
-    @classmethod
-    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        """A front-end tag as (the class to build, its keyword arguments): upstream's hook,
-        which an action exposed with launch.frontend.expose_action overrides."""
-        return cls, cls.parse_condition(entity)
-
     @staticmethod
-    def parse_condition(entity: Entity) -> dict[str, Any]:
-        """The `if` / `unless` attributes every action tag takes, as a `condition` argument."""
+    def parse(entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        """A front-end tag's `if` / `unless` as a `condition` keyword argument."""
         from launch.conditions import IfCondition, UnlessCondition
-        from launch.frontend.entity import FrontendError
-        from launch.frontend.parse_substitution import parse_substitutions
-        if_text, unless_text = entity.get('if'), entity.get('unless')
+        if_text = entity.get_attr('if', optional=True)
+        unless_text = entity.get_attr('unless', optional=True)
         if if_text is not None and unless_text is not None:
-            raise FrontendError(f"<{entity.tag}> cannot have both 'if' and 'unless'")
+            raise RuntimeError("if and unless conditions can't be used simultaneously")
+        kwargs: dict[str, Any] = {}
         if if_text is not None:
-            return {'condition': IfCondition(parse_substitutions(if_text))}
+            kwargs['condition'] = IfCondition(predicate_expression=parser.parse_substitution(
+                if_text))
         if unless_text is not None:
-            return {'condition': UnlessCondition(parse_substitutions(unless_text))}
-        return {}
+            kwargs['condition'] = UnlessCondition(
+                predicate_expression=parser.parse_substitution(unless_text))
+        return Action, kwargs
+
+    @classmethod
+    def parse_condition(cls, entity: Entity) -> dict[str, Any]:
+        """Only the `if` / `unless` keyword argument (this workspace's older spelling)."""
+        from launch.frontend.parser import Parser
+        return Action.parse(entity, Parser())[1]
 
     @property
     def condition(self) -> Condition | None:
         return self.__condition
 
+    def describe(self) -> str:
+        return repr(self)
+
+    def get_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        return []
+
+    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        return self.get_sub_entities() if self.condition is None else []
+
+    def describe_conditional_sub_entities(
+            self) -> list[tuple[str, Iterable[LaunchDescriptionEntity]]]:
+        if self.condition is None:
+            return []
+        return [(f'Conditionally included by {self.describe()}', self.get_sub_entities())]
+
     def visit(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
-        if self.__condition is None or self.__condition.evaluate(context):
+        if self.__condition is not None and not self.__condition.evaluate(context):
+            return None
+        try:
             return self.execute(context)
-        return None
+        finally:
+            self.__announce_completion(context)
+
+    def __announce_completion(self, context: LaunchContext) -> None:
+        # ExecutionComplete only when someone listens; an action with a future completes
+        # when its future does, and a handler registered meanwhile hears of it too.
+        from launch.events.execution_complete import ExecutionComplete
+        event = ExecutionComplete(action=self)
+        future = self.get_asyncio_future()
+        if future is None:
+            if context.would_handle_event(event):
+                context.emit_event_sync(event)
+            return
+
+        def completed(_: object) -> None:
+            if context.would_handle_event(event):
+                context.emit_event_sync(event)
+        future.add_done_callback(completed)
 
     def execute(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
         return None
-
-    def describe(self) -> str:
-        return f'{type(self).__name__}'

@@ -10,11 +10,13 @@ if TYPE_CHECKING:
 
 
 class Condition:
+    """True when its predicate is; a condition without predicate is False (upstream)."""
+
     def __init__(self, *, predicate: Callable[[LaunchContext], bool] | None = None) -> None:
         self._predicate = predicate
 
     def evaluate(self, context: LaunchContext) -> bool:
-        return bool(self._predicate(context)) if self._predicate is not None else True
+        return bool(self._predicate(context)) if self._predicate is not None else False
 
     def describe(self) -> str:
-        return type(self).__name__
+        return f'{type(self).__name__}()'

@@ -2,4 +2,9 @@
 
 
 class Event:
-    name = 'launch.event.Event'
+    """Base class of every event; `name` says which kind it is."""
+
+    name = 'launch.Event'
+
+    def __repr__(self) -> str:
+        return f'{type(self).__name__}()'

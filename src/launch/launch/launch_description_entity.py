@@ -3,13 +3,26 @@
 from __future__ import annotations
 
 import asyncio
-from typing import TYPE_CHECKING, Any
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
 
 class LaunchDescriptionEntity:
+    def describe(self) -> str:
+        raise NotImplementedError()
+
+    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        """Entities this one always brings (for introspection: argument lists, --print)."""
+        return []
+
+    def describe_conditional_sub_entities(
+            self) -> list[tuple[str, Iterable[LaunchDescriptionEntity]]]:
+        """(why, entities) this one may bring, depending on something known only at run time."""
+        return []
+
     def visit(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
         """Do this entity's work; return the entities to visit next."""
         return None
@@ -17,12 +30,3 @@ class LaunchDescriptionEntity:
     def get_asyncio_future(self) -> asyncio.Future | None:
         """A future the launch waits for before it is idle (a process, a timer), or None."""
         return None
-
-    def describe(self) -> str:
-        return f'{type(self).__name__}'
-
-    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
-        return []
-
-    def describe_conditional_sub_entities(self) -> list[tuple[str, list[Any]]]:
-        return []

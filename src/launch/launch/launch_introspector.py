@@ -6,7 +6,8 @@ from typing import Any
 
 from launch.action import Action
 from launch.launch_description import LaunchDescription
-from launch.substitution import describe, normalize_to_list_of_substitutions
+from launch.substitution import describe
+from launch.utilities import normalize_to_list_of_substitutions
 
 _STEP = '    '
 
@@ -56,7 +57,7 @@ def _format_action(action: Action) -> list[str]:
     if isinstance(action, ExecuteProcess):
         cwd = 'None' if action.cwd is None else f"'{describe(action.cwd)}'"
         env = 'None' if action.env is None else '{' + ', '.join(
-            f'{_substitutions(k)}: {_substitutions(v)}' for k, v in dict(action.env).items()
+            f'{_substitutions(k)}: {_substitutions(v)}' for k, v in action.env
         ) + '}'
         cmd = ', '.join(describe(part) for part in action.cmd)
         return [f'ExecuteProcess(cmd=[{cmd}], cwd={cwd}, env={env}, shell={action.shell})']

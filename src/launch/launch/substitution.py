@@ -1,10 +1,8 @@
-"""Substitution: a value worked out when the launch runs, and the helpers around it."""
+"""Substitution: a value worked out when the launch runs."""
 
 from __future__ import annotations
 
-import pathlib
-from collections.abc import Iterable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
@@ -14,50 +12,27 @@ class Substitution:
     """Base class: `perform(context)` returns the text this stands for."""
 
     def perform(self, context: LaunchContext) -> str:
-        raise NotImplementedError(type(self).__name__)
+        raise NotImplementedError()
 
     def describe(self) -> str:
-        return repr(self)
-
-
-class TextSubstitution(Substitution):
-    """Plain text."""
-
-    def __init__(self, *, text: str) -> None:
-        self.text = text
-
-    def perform(self, context: LaunchContext) -> str:
-        return self.text
-
-    def describe(self) -> str:
-        return repr(self.text)
-
-
-SomeSubstitutionsType = (str | pathlib.PurePath | Substitution
-                         | Iterable[str | pathlib.PurePath | Substitution])
-SomeSubstitutionsType_types_tuple = (str, pathlib.PurePath, Substitution)
-
-
-def normalize_to_list_of_substitutions(subs: SomeSubstitutionsType) -> list[Substitution]:
-    """Text, a path, a substitution or an iterable of them, as a list of substitutions."""
-    if isinstance(subs, (str, pathlib.PurePath, Substitution, int, float)):
-        subs = [subs]
-    result: list[Substitution] = []
-    for item in subs:
-        if isinstance(item, Substitution):
-            result.append(item)
-        elif isinstance(item, (str, pathlib.PurePath, int, float)):
-            # Numbers are accepted for convenience (upstream insists on text).
-            result.append(TextSubstitution(text=str(item)))
-        else:
-            raise TypeError(f'expected text or a Substitution, got {type(item).__name__}: '
-                            f'{item!r}')
-    return result
-
-
-def perform_substitutions(context: LaunchContext, subs: list[Substitution]) -> str:
-    return ''.join(sub.perform(context) for sub in subs)
+        return f'{type(self).__name__}()'
 
 
 def describe(subs: list[Substitution]) -> str:
+    """A list of substitutions as text for --print and error messages."""
     return ' + '.join(sub.describe() for sub in subs)
+
+
+def __getattr__(name: str) -> Any:
+    # Older spellings this workspace used: the helpers now live in launch.utilities and
+    # TextSubstitution in launch.substitutions (imported late: they import this module).
+    if name in ('normalize_to_list_of_substitutions', 'perform_substitutions'):
+        import launch.utilities
+        return getattr(launch.utilities, name)
+    if name == 'TextSubstitution':
+        from launch.substitutions.text_substitution import TextSubstitution
+        return TextSubstitution
+    if name in ('SomeSubstitutionsType', 'SomeSubstitutionsType_types_tuple'):
+        import launch.some_substitutions_type
+        return getattr(launch.some_substitutions_type, name)
+    raise AttributeError(name)

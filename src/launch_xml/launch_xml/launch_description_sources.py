@@ -2,15 +2,16 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from launch.launch_description_sources import FrontendLaunchDescriptionSource
-from launch.substitution import SomeSubstitutionsType
+
+from launch_xml.parser import Parser
 
 
 class XMLLaunchDescriptionSource(FrontendLaunchDescriptionSource):
-    file_format = 'xml'
-
-    def __init__(self, launch_file_path: SomeSubstitutionsType) -> None:
-        super().__init__(launch_file_path, method='interpreted XML launch file')
+    def __init__(self, launch_file_path: Any) -> None:
+        super().__init__(launch_file_path, method='interpreted XML launch file', parser=Parser)
 
 
 __all__ = ['XMLLaunchDescriptionSource']

@@ -1,24 +1,19 @@
-"""Reads an XML launch file into launch.frontend entities: a tag per element."""
+"""Parser: the XML front end (`<launch>...</launch>`), from a path or an open stream."""
 
 from __future__ import annotations
 
 import xml.etree.ElementTree as ElementTree
-
-from launch.frontend import Entity, FrontendError
+from typing import IO, Any
 
 from launch import frontend
-
-
-def _entity(element: ElementTree.Element) -> Entity:
-    return Entity(element.tag, dict(element.attrib), [_entity(child) for child in element])
+from launch_xml.entity import Entity
 
 
 class Parser(frontend.Parser):
-    file_extensions = ('xml',)
+    @classmethod
+    def load(cls, file: str | IO[Any]) -> tuple[Entity, Parser]:
+        return Entity(ElementTree.parse(file).getroot()), cls()
 
     @classmethod
-    def load(cls, path: str) -> Entity:
-        try:
-            return _entity(ElementTree.parse(path).getroot())
-        except ElementTree.ParseError as error:
-            raise FrontendError(f'invalid XML: {error}') from None
+    def get_file_extensions(cls) -> set[str]:
+        return {'launch.xml', 'xml', 'launch'}

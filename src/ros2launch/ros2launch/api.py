@@ -52,7 +52,14 @@ def print_a_launch_file(*, launch_file_path: str) -> None:
 
 
 def print_arguments_of_launch_file(*, launch_file_path: str) -> None:
-    description = get_launch_description_from_any_launch_file(launch_file_path)
+    print_arguments_of_launch_description(
+        launch_description=get_launch_description_from_any_launch_file(launch_file_path))
+
+
+def print_arguments_of_launch_description(*, launch_description: launch.LaunchDescription
+                                          ) -> None:
+    """The declared arguments, those of included launch files too (`--show-args`)."""
+    description = launch_description
     print("Arguments (pass arguments as '<name>:=<value>'):")
     arguments = description.get_launch_arguments()
     any_conditional = False

@@ -6,10 +6,11 @@ read a file format into `Entity` trees live in their own packages, launch_xml an
 launch_yaml, found through the `launch.frontend.parser` entry point group.
 """
 
+from launch.frontend import type_utils
 from launch.frontend.entity import Entity, FrontendError
 from launch.frontend.expose import expose_action, expose_substitution
 from launch.frontend.parse_substitution import parse_substitutions, split_command_line
 from launch.frontend.parser import Parser
 
 __all__ = ['Entity', 'FrontendError', 'Parser', 'expose_action', 'expose_substitution',
-           'parse_substitutions', 'split_command_line']
+           'parse_substitutions', 'split_command_line', 'type_utils']

@@ -1,4 +1,10 @@
-"""Entity: one tag of a launch file, its attributes and children, whatever the file format."""
+"""Entity: one tag of a launch file, whatever the file format (launch_xml, launch_yaml).
+
+A front end implements upstream's interface: `type_name`, `parent`, `children`,
+`get_attr(name, data_type=str, optional=False, can_be_str=True)` and
+`assert_entity_completely_parsed()`. The helpers below it (`get`, `get_substitutions`, ...)
+are this workspace's shorthands built on `get_attr`.
+"""
 
 from __future__ import annotations
 
@@ -13,29 +19,43 @@ class FrontendError(ValueError):
 
 
 class Entity:
-    """Built by a front end (launch_xml, launch_yaml); read by the actions' `parse` methods.
-
-    Every attribute read is remembered, so an attribute no parser read is reported by name
-    instead of being ignored.
-    """
-
-    def __init__(self, tag: str, attributes: dict[str, Any], children: list[Entity]) -> None:
-        self.tag = tag.replace('-', '_')
-        self.attributes = attributes
-        self.children = children
-        self._used: set[str] = set()
+    @property
+    def type_name(self) -> str:
+        raise NotImplementedError()
 
     @property
-    def type_name(self) -> str:  # upstream's name for the tag
-        return self.tag
+    def parent(self) -> Entity | None:
+        raise NotImplementedError()
+
+    @property
+    def children(self) -> list[Entity]:
+        raise NotImplementedError()
+
+    def get_attr(self, name: str, *, data_type: Any = str, optional: bool = False,
+                 can_be_str: bool = True) -> Any:
+        """An attribute as `data_type` (List[Entity]: the nested entities called `name`)."""
+        raise NotImplementedError()
+
+    def assert_entity_completely_parsed(self) -> None:
+        """Raise when an attribute or nested tag was never read (a typo must not pass)."""
+        raise NotImplementedError()
+
+    # -- shorthands --------------------------------------------------------------------------
+    @property
+    def tag(self) -> str:
+        return self.type_name.replace('-', '_')
 
     def get(self, name: str, default: Any = None, required: bool = False) -> Any:
-        self._used.add(name)
-        if name in self.attributes:
-            return self.attributes[name]
-        if required:
-            raise FrontendError(f"<{self.tag}> needs the attribute '{name}'")
-        return default
+        """The attribute as written (text, or a YAML scalar), `default` when absent."""
+        try:
+            value = self.get_attr(name, data_type=str, optional=True)
+        except TypeError:  # a YAML number, bool or list
+            value = self.get_attr(name, data_type=None, optional=True)
+        if value is None:
+            if required:
+                raise FrontendError(f"<{self.type_name}> needs the attribute '{name}'")
+            return default
+        return value
 
     def get_bool(self, name: str, default: bool) -> bool:
         value = self.get(name)
@@ -47,7 +67,8 @@ class Entity:
             return True
         if str(value).lower() in ('false', '0'):
             return False
-        raise FrontendError(f"<{self.tag} {name}=...> must be true or false, got '{value}'")
+        raise FrontendError(f"<{self.type_name} {name}=...> must be true or false, got "
+                            f"'{value}'")
 
     def get_substitutions(self, name: str, required: bool = False
                           ) -> list[Substitution] | None:
@@ -63,10 +84,10 @@ class Entity:
         return None if value is None else split_command_line(parse_substitutions(value))
 
     def children_of(self, tag: str) -> list[Entity]:
-        return [child for child in self.children if child.tag == tag]
+        return self.get_attr(tag, data_type=list[Entity], optional=True) or []
 
     def check_all_used(self) -> None:
-        unused = sorted(set(self.attributes) - self._used)
-        if unused:
-            raise FrontendError(f"<{self.tag}>: attribute '{unused[0]}' is not supported "
-                                'by this launch (see docs/launch.md)')
+        try:
+            self.assert_entity_completely_parsed()
+        except ValueError as error:
+            raise FrontendError(str(error)) from None

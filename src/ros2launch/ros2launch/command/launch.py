@@ -35,6 +35,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         '-a', '--show-all-subprocesses-output', default=False, action='store_true',
         help="Show all launched subprocesses' output by overriding their output configuration "
              'using the OVERRIDE_LAUNCH_PROCESS_OUTPUT envvar.')
+    parser.add_argument(
+        '--launch-prefix',
+        help='Prefix command, which should go before all executables. Command must be wrapped '
+             "in quotes if it contains spaces (e.g. --launch-prefix 'xterm -e gdb -ex run "
+             "--args').")
+    parser.add_argument(
+        '--launch-prefix-filter',
+        help='Regex pattern for filtering which executables the --launch-prefix is applied to '
+             'by matching the executable name.')
     parser.add_argument('package_name',
                         help='Name of the ROS package which contains the launch file')
     parser.add_argument('launch_file_name', nargs='?', help='Name of the launch file')
@@ -64,6 +73,13 @@ def main(args: argparse.Namespace) -> int | str:
         except (FileNotFoundError, MultipleLaunchFilesError) as error:
             raise CliError(str(error)) from None
     arguments.extend(args.launch_arguments)
+    if args.launch_prefix is None and args.launch_prefix_filter is not None:
+        raise CliError('--launch-prefix must be specified if --launch-prefix-filter is provided')
+    # As launch arguments, last: they win over a `launch-prefix:=` given by hand.
+    if args.launch_prefix:
+        arguments.append(f'launch-prefix:={args.launch_prefix}')
+    if args.launch_prefix_filter:
+        arguments.append(f'launch-prefix-filter:={args.launch_prefix_filter}')
     if args.show_all_subprocesses_output:
         os.environ['OVERRIDE_LAUNCH_PROCESS_OUTPUT'] = 'both'
     try:

@@ -1,0 +1,15 @@
+"""PushEnvironment: saves the environment, for a later PopEnvironment."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from launch.action import Action
+
+if TYPE_CHECKING:
+    from launch.launch_context import LaunchContext
+
+
+class PushEnvironment(Action):
+    def execute(self, context: LaunchContext) -> None:
+        context._push_environment()

@@ -1,0 +1,24 @@
+"""UnregisterEventHandler: unregisters an event handler when visited."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from launch.action import Action
+from launch.event_handler import BaseEventHandler
+
+if TYPE_CHECKING:
+    from launch.launch_context import LaunchContext
+
+
+class UnregisterEventHandler(Action):
+    def __init__(self, event_handler: BaseEventHandler, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.__event_handler = event_handler
+
+    @property
+    def event_handler(self) -> BaseEventHandler:
+        return self.__event_handler
+
+    def execute(self, context: LaunchContext) -> None:
+        context.unregister_event_handler(self.__event_handler)

@@ -1,0 +1,16 @@
+"""OnProcessExit: run entities (or call a function) when a process has exited."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from launch.event_handlers.on_action_event_base import OnActionEventBase
+from launch.events.process.process_exited import ProcessExited
+
+
+class OnProcessExit(OnActionEventBase):
+    def __init__(self, *, target_action: Any = None, on_exit: Any, **kwargs: Any) -> None:
+        from launch.actions.execute_local import ExecuteLocal
+        super().__init__(action_matcher=target_action, on_event=on_exit,
+                         target_event_cls=ProcessExited, target_action_cls=ExecuteLocal,
+                         **kwargs)

@@ -1,0 +1,16 @@
+"""OnProcessStart: run entities (or call a function) when a process has started."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from launch.event_handlers.on_action_event_base import OnActionEventBase
+from launch.events.process.process_started import ProcessStarted
+
+
+class OnProcessStart(OnActionEventBase):
+    def __init__(self, *, target_action: Any = None, on_start: Any, **kwargs: Any) -> None:
+        from launch.actions.execute_local import ExecuteLocal
+        super().__init__(action_matcher=target_action, on_event=on_start,
+                         target_event_cls=ProcessStarted, target_action_cls=ExecuteLocal,
+                         **kwargs)

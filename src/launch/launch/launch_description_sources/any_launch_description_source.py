@@ -1,0 +1,21 @@
+"""AnyLaunchDescriptionSource: a Python, XML or YAML launch file."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from launch.launch_description_source import LaunchDescriptionSource
+from launch.launch_description_sources.any_launch_file_utilities import (
+    get_launch_description_from_any_launch_file,
+)
+
+if TYPE_CHECKING:
+    from launch.launch_description import LaunchDescription
+
+
+class AnyLaunchDescriptionSource(LaunchDescriptionSource):
+    def __init__(self, launch_file_path: Any) -> None:
+        super().__init__(None, launch_file_path, 'interpreted launch file')
+
+    def _get_launch_description(self, location: str) -> LaunchDescription:
+        return get_launch_description_from_any_launch_file(location)
