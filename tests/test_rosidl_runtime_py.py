@@ -7,6 +7,8 @@ In-process, no DDS: these are pure functions of generated message classes.
 from __future__ import annotations
 
 import array
+import subprocess
+import sys
 from collections import OrderedDict
 
 import numpy
@@ -153,3 +155,14 @@ def test_interfaces_by_package() -> None:
     assert get_interface_path('std_msgs/msg/String.idl').endswith('String.idl')
     with pytest.raises(ValueError, match=r"Must not contain '\.\.'"):
         get_interface_path('std_msgs/../String')
+
+
+def test_looking_interfaces_up_imports_neither_numpy_nor_yaml() -> None:
+    # `ros2` verbs look types up through rosidl_runtime_py.utilities: they start without
+    # paying for numpy and yaml, which conversion imports when it first needs them.
+    probe = ('import sys; from rosidl_runtime_py.utilities import get_message; '
+             "get_message('std_msgs/msg/String'); "
+             "print(sorted(m for m in ('numpy', 'yaml') if m in sys.modules))")
+    ran = subprocess.run([sys.executable, '-c', probe], capture_output=True, text=True,
+                         timeout=60)
+    assert ran.stdout == '[]\n', ran.stdout + ran.stderr

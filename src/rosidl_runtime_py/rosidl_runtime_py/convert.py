@@ -10,36 +10,52 @@ from __future__ import annotations
 import array
 import sys
 from collections import OrderedDict
+from functools import cache
 from typing import Any
 
-import numpy
-import yaml
 from rosidl_parser import definition
 
-SEQUENCE_TYPES = (list, tuple, array.array, numpy.ndarray)
+# numpy and yaml are imported when needed, not with this module: `ros2` verbs that only look
+# interfaces up (rosidl_runtime_py.utilities) start faster without them.
 
 
-class _OrderedDumper(yaml.Dumper):
+def is_sequence(value: Any) -> bool:
+    """A list, tuple, array.array or numpy array (what a sequence field holds or takes)."""
+    return isinstance(value, (list, tuple, array.array)) or is_numpy(value, 'ndarray')
+
+
+def is_numpy(value: Any, kind: str) -> bool:
+    # A numpy value exists only once numpy is imported: no need to import it to check.
+    numpy = sys.modules.get('numpy')
+    return numpy is not None and isinstance(value, getattr(numpy, kind))
+
+
+@cache
+def _ordered_dumper() -> Any:
     """yaml's default Dumper, with OrderedDicts as plain mappings in their own order.
 
     The mapping node gets no flow style of its own, so mappings stay in block style even with
     `default_flow_style=True` (only sequences flow), as `ros2 topic echo --flow-style` prints.
     A subclass, so that other users of yaml.dump in the process see no change.
     """
+    import yaml
 
+    class OrderedDumper(yaml.Dumper):
+        pass
 
-def _represent_ordered(dumper: yaml.Dumper, data: OrderedDict) -> yaml.MappingNode:
-    return yaml.MappingNode('tag:yaml.org,2002:map', [
-        (dumper.represent_data(key), dumper.represent_data(value))
-        for key, value in data.items()])
+    def represent_ordered(dumper: yaml.Dumper, data: OrderedDict) -> yaml.MappingNode:
+        return yaml.MappingNode('tag:yaml.org,2002:map', [
+            (dumper.represent_data(key), dumper.represent_data(value))
+            for key, value in data.items()])
 
-
-_OrderedDumper.add_representer(OrderedDict, _represent_ordered)
+    OrderedDumper.add_representer(OrderedDict, represent_ordered)
+    return OrderedDumper
 
 
 def dump_yaml(data: Any, flow_style: bool = False) -> str:
     """YAML of data that message_to_ordereddict gave (or built from it), as message_to_yaml."""
-    return yaml.dump(data, Dumper=_OrderedDumper, allow_unicode=True, width=sys.maxsize,
+    import yaml
+    return yaml.dump(data, Dumper=_ordered_dumper(), allow_unicode=True, width=sys.maxsize,
                      default_flow_style=flow_style)
 
 
@@ -64,7 +80,7 @@ def _values_and_slots(msg: Any) -> list[tuple[Any, Any]]:
 
 def _csv_value(value: Any, slot: Any, options: dict) -> str:
     limit = options['truncate_length']
-    if isinstance(value, SEQUENCE_TYPES):
+    if is_sequence(value):
         if options['no_arr'] and slot is not None:
             return _sequence_summary(value, slot)
         items = []
@@ -74,7 +90,7 @@ def _csv_value(value: Any, slot: Any, options: dict) -> str:
                 break
             items.append(_csv_value(item, None, options))
         return ','.join(items)
-    if isinstance(value, (bool, bytes, float, int, str, numpy.number)):
+    if isinstance(value, (bool, bytes, float, int, str)) or is_numpy(value, 'number'):
         if options['no_str'] and isinstance(value, str):
             return _string_summary(value)
         if isinstance(value, (bytes, str)) and limit is not None and len(value) > limit:
@@ -108,7 +124,7 @@ def _convert_value(value: Any, *, field_type: Any = None, truncate_length: int |
         if truncate_length is not None and len(value) > truncate_length:
             return value[:truncate_length] + '...'
         return value
-    if isinstance(value, SEQUENCE_TYPES):
+    if is_sequence(value):
         if no_arr and field_type is not None:
             return _sequence_summary(value, field_type)
         # Tuples stay tuples; arrays and ndarrays (one element type each) become lists.
@@ -123,7 +139,7 @@ def _convert_value(value: Any, *, field_type: Any = None, truncate_length: int |
         for key, item in value.items():
             converted[_convert_value(key)] = _convert_value(item, **options)
         return converted
-    if isinstance(value, numpy.number):
+    if is_numpy(value, 'number'):
         return value.item()
     if isinstance(value, (bool, float, int)) or value is None:
         return value

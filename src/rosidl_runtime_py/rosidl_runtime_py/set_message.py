@@ -14,10 +14,9 @@ from collections.abc import Callable
 from functools import partial
 from typing import Any
 
-import numpy
 from rosidl_parser import definition
 
-from rosidl_runtime_py.convert import SEQUENCE_TYPES, get_message_slot_types
+from rosidl_runtime_py.convert import get_message_slot_types, is_numpy, is_sequence
 from rosidl_runtime_py.import_message import import_message_from_namespaced_type
 
 INTEGER_RANGES = {
@@ -124,7 +123,7 @@ def _convert(slot: Any, value: Any, current: Any, path: str, expand: tuple[bool,
 
 def _convert_sequence(slot: Any, value: Any, path: str, expand: tuple[bool, bool],
                       stamps: list) -> Any:
-    if not isinstance(value, SEQUENCE_TYPES):
+    if not is_sequence(value):
         raise FieldError(f"'{path}' must be a list, got {_show(value)}")
     if isinstance(slot, definition.Array) and len(value) != slot.size:
         raise FieldError(f"'{path}' must have exactly {slot.size} elements, got {len(value)}")
@@ -152,7 +151,7 @@ def _checked_string(slot: Any, value: Any, path: str) -> str:
 
 def _checked_basic(name: str | None, value: Any, path: str) -> Any:
     if name == 'boolean':
-        if not isinstance(value, (bool, numpy.bool_)):
+        if not (isinstance(value, bool) or is_numpy(value, 'bool_')):
             raise FieldError(f"'{path}' must be a boolean (true or false), got {_show(value)}")
         return bool(value)
     if name in INTEGER_RANGES:
