@@ -106,7 +106,7 @@ def test_call_defaults_and_int_for_float(ros_env, node):
 @pytest.mark.parametrize('type_name, values, message', [
     ('geometry_msgs/msg/Twist', "{linear: {x: 'a'}}", "'linear.x' must be a number, got 'a'"),
     ('geometry_msgs/msg/Twist', '{angular: 3}',
-     "'angular.' expects a mapping of field names to values, got 3"),
+     "'angular' expects a mapping of field names to values, got 3"),
     ('turtlesim/msg/Pose', '{x: 1.0e+39}',
      "'x' must be a float32 in [-3.40282e+38, 3.40282e+38], got 1e+39"),
     ('turtlesim/msg/Color', '{r: 1, yes: 2}',

@@ -96,8 +96,10 @@ def test_colcon_test_runs_launch_tests_and_reports_failures(tmp_path, ros_env) -
                             env=ros_env, capture_output=True, text=True, timeout=60)
     report = result.stdout
     assert result.returncode == 1, report
-    assert 'talker_launch_test.xml: 2 tests, 0 errors, 0 failures, 0 skipped' in report, report
-    assert 'failing_exit_launch_test.xml: 2 tests, 0 errors, 1 failure, 0 skipped' in report
+    assert 'talker_launch_test.py.xunit.xml: 2 tests, 0 errors, 0 failures, 0 skipped' \
+        in report, report
+    assert 'failing_exit_launch_test.py.xunit.xml: 2 tests, 0 errors, 1 failure, 0 skipped' \
+        in report
     assert 'launch_demo_py/pytest.xml: 2 tests, 0 errors, 1 failure, 0 skipped' in report
     # Each failure names the test and the file and line of the failing assertion.
     assert re.search(r'failing_exit_launch_test\.py", line \d+, in test_exit_code', report), \

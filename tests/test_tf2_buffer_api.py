@@ -13,7 +13,7 @@ import time
 import pytest
 import rclpy.duration
 import rclpy.time
-import tf2_geometry_msgs  # noqa: F401  (registers the stamped types, as upstream)
+import tf2_geometry_msgs  # registers the stamped types, as upstream
 from geometry_msgs.msg import (
     AccelStamped,
     PointStamped,
@@ -147,3 +147,42 @@ def test_lookup_transform_full_through_a_fixed_frame() -> None:
     # 1 m behind along world's x, which is robot's -y after the 90 degree turn.
     v = result.transform.translation
     assert (v.x, v.y, v.z) == pytest.approx((0.0, 1.0, 0.0), abs=1e-9)
+
+
+def test_transformed_orientations_have_w_at_least_zero() -> None:
+    # Half a turn about x applied to half a turn about x: the identity. The quaternion
+    # product is w = -1; upstream gives the same rotation as w = +1, and so do we.
+    half_turn = TransformStamped()
+    half_turn.header.frame_id, half_turn.child_frame_id = 'a', 'b'
+    half_turn.transform.rotation.x, half_turn.transform.rotation.w = 1.0, 0.0
+    for pose_type in (PoseStamped, PoseWithCovarianceStamped):
+        pose = pose_type()
+        inner = pose.pose.pose if pose_type is PoseWithCovarianceStamped else pose.pose
+        inner.orientation.x, inner.orientation.w = 1.0, 0.0
+        result = tf2_geometry_msgs.do_transform_pose_stamped(pose, half_turn) \
+            if pose_type is PoseStamped else \
+            tf2_geometry_msgs.do_transform_pose_with_covariance_stamped(pose, half_turn)
+        out = result.pose.pose if pose_type is PoseWithCovarianceStamped else result.pose
+        q = out.orientation
+        assert (q.x, q.y, q.z, q.w) == (0.0, 0.0, 0.0, 1.0), pose_type
+
+
+def test_buffer_takes_rclpy_time_stamps_and_set_transform_returns_none() -> None:
+    buffer = Buffer()
+    t = robot_in_world()
+    t.header.stamp = rclpy.time.Time(seconds=2.5)  # an rclpy Time, as upstream's tests set it
+    assert buffer.set_transform(t, 'test') is None
+    found = buffer.lookup_transform('world', 'robot', rclpy.time.Time(seconds=2.5))
+    assert (found.header.stamp.sec, found.header.stamp.nanosec) == (2, 500_000_000)
+
+
+def test_tf2_ros_namespace_holds_what_upstreams_star_imports_bring() -> None:
+    # The URDF tutorial's state_publisher.py imports both from tf2_ros.
+    from tf2_ros import (  # noqa: F401
+        BufferClient,
+        Duration,
+        Time,
+        TransformBroadcaster,
+        TransformStamped,
+    )
+    assert TransformStamped is robot_in_world().__class__

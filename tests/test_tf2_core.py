@@ -230,7 +230,7 @@ def test_bad_input_is_refused_and_changes_nothing(capfd) -> None:
            stamped('', 'child', 2.0),
            stamped('parent', '', 2.0)]
     for transform in bad:
-        assert buffer.set_transform(transform, 'fuzzer') is False
+        assert buffer.set_transform(transform, 'fuzzer') is None  # as upstream: logged, not told
     logged = capfd.readouterr().err.splitlines()
     assert [line.split(']: ')[1].split(':')[0] for line in logged] == [
         'TF_NAN_INPUT', 'TF_DENORMALIZED_QUATERNION', 'TF_SELF_TRANSFORM', 'TF_NO_FRAME_ID',
@@ -252,7 +252,7 @@ def test_cache_keeps_its_cache_time_and_refuses_older_data(capfd) -> None:
     # Pruned before each insert, against the newest stamp so far (29 s): 19 s is kept.
     with pytest.raises(ExtrapolationException, match=r'earliest data is at time 19\.000000'):
         buffer.lookup_transform_core('parent', 'child', at(15.0))
-    assert buffer.set_transform(stamped('parent', 'child', 5.0), 'late') is False
+    assert buffer.set_transform(stamped('parent', 'child', 5.0), 'late') is None
     assert 'TF_OLD_DATA ignoring data from the past for frame child at time 5.000000 ' \
            'according to authority late' in capfd.readouterr().err
 
@@ -281,3 +281,24 @@ def test_all_frames_as_yaml_as_tf2_prints_it() -> None:
     assert BufferCore().all_frames_as_yaml() == '[]'
     assert buffer.all_frames_as_string() == ('Frame turtle1 exists with parent world.\n'
                                              'Frame cam exists with parent turtle1.\n')
+
+
+def test_velocity_from_two_lookups_an_averaging_interval_apart() -> None:
+    buffer = BufferCore()
+    for seconds in range(5):  # moving 3 m/s along x; turning 0.5 rad/s about z
+        buffer.set_transform(stamped('parent', 'mover', seconds, (3.0 * seconds, 0.0, 0.0)),
+                             'test')
+        buffer.set_transform(stamped('parent', 'spinner', seconds, rpy=(0.0, 0.0, 0.5 * seconds)),
+                             'test')
+    interval = rclpy.duration.Duration(seconds=2)
+    linear, angular = buffer.lookupVelocityCore('mover', 'parent', at(2.0), interval)
+    assert linear == pytest.approx((3.0, 0.0, 0.0)) and angular == pytest.approx((0, 0, 0))
+    # Time 0 is the latest data: the interval ends there (it cannot reach past 4 s).
+    linear, angular = buffer.lookupVelocityCore('spinner', 'parent', LATEST, interval)
+    assert linear == pytest.approx((0, 0, 0), abs=1e-9)
+    assert angular == pytest.approx((0.0, 0.0, 0.5))
+    full = buffer.lookupVelocityFullCore('spinner', 'parent', 'parent', (0, 0, 0), 'spinner',
+                                         LATEST, interval)
+    assert full == buffer.lookupVelocityCore('spinner', 'parent', LATEST, interval)
+    with pytest.raises(LookupException):
+        buffer.lookupVelocityCore('nowhere', 'parent', LATEST, interval)

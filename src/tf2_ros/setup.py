@@ -18,6 +18,7 @@ setup(
     license='BSD-3-Clause',
     entry_points={
         'console_scripts': [
+            'buffer_server = tf2_ros.buffer_server:main',
             'static_transform_publisher = tf2_ros.static_transform_publisher:main',
             'tf2_echo = tf2_ros.tf2_echo:main',
             'tf2_monitor = tf2_ros.tf2_monitor:main',

@@ -8,13 +8,13 @@ parse exactly this concatenation. Services give one schema per request and respo
 
 from __future__ import annotations
 
-import importlib
 import re
 from functools import cache, lru_cache
 from pathlib import Path
 from typing import Any
 
 from ament_index_python import get_package_share_directory, get_resource
+from rosidl_runtime_py.utilities import get_interface
 
 TYPE_NAME = re.compile(r'^([a-zA-Z0-9_]+)/(?:(msg|srv|action)/)?([a-zA-Z0-9_]+)$')
 # The type of a field in a .msg text ("geometry_msgs/Vector3" in "geometry_msgs/Vector3[] v").
@@ -86,8 +86,7 @@ def interface_class(type_name: str) -> Any:
     match = TYPE_NAME.match(type_name)
     if not match or not match.group(2):
         raise DefinitionNotFound(type_name)
-    package, kind, name = match.groups()
     try:
-        return getattr(importlib.import_module(f'{package}.{kind}'), name)
-    except (ImportError, AttributeError) as error:
+        return get_interface(type_name)
+    except (ImportError, AttributeError, ValueError) as error:
         raise DefinitionNotFound(type_name) from error

@@ -104,6 +104,9 @@ class LaunchTestRunner:
             final = {**injected, 'proc_info': proc_info._proc_info_handler,
                      'proc_output': proc_output._io_handler}
             test_run.bind(test_run.post_shutdown_tests, final, final)
+            # unittest remembers the last class the active tests ran (torn down already at the
+            # end of their run): forget it, or the first post-shutdown test tears it down again.
+            result._previousTestClass = None
             test_run.post_shutdown_tests.run(result)
         result.duration = time.monotonic() - started
         return result

@@ -1,15 +1,14 @@
 """What every command shares: the error a verb raises, graph names, the graph verbs' common
 options, interface types.
 
-The CLI node and graph waits are in ros2cli_lite.node, message <-> YAML conversion in
-ros2cli_lite.convert (rosidl_runtime_py's names). Heavy modules (rclpy, yaml, the generated
-interfaces) are imported inside the functions that need them, so `ros2 interface show` or
-`ros2 run` never pay for DDS.
+The CLI node and graph waits are in ros2cli_lite.node; message <-> YAML conversion is
+rosidl_runtime_py's (ros2cli_lite.convert adds the command line's YAML parsing). Heavy
+modules (rclpy, yaml, the generated interfaces) are imported inside the functions that need
+them, so `ros2 interface show` or `ros2 run` never pay for DDS.
 """
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Callable
 from typing import Any
 
@@ -75,15 +74,17 @@ def _non_negative_seconds(text: str) -> float:
 # --------------------------------------------------------------------------------------
 
 def import_type(name: str, kind: str) -> Any:
-    """The generated class for 'pkg/kind/Name' or 'pkg/Name' (kind = msg, srv or action)."""
+    """The generated class 'pkg/kind/Name' or 'pkg/Name' names (kind = msg, srv or action;
+    also a service's parts, e.g. 'pkg/srv/Name_Event'); ValueError(name) for anything else."""
+    from rosidl_runtime_py.utilities import get_interface
+
     parts = name.split('/')
     if len(parts) == 2:
         parts = [parts[0], kind, parts[1]]
     if len(parts) != 3 or not all(parts) or parts[1] != kind:
         raise ValueError(name)
     try:
-        module = importlib.import_module(f'{parts[0]}.{parts[1]}')
-        return getattr(module, parts[2])
+        return get_interface('/'.join(parts))
     except (ImportError, AttributeError, ValueError):
         raise ValueError(name) from None
 

@@ -1,7 +1,7 @@
 """Forms generated from interface types, and the checks on what comes back from them.
 
 A form is described to the page as a list of fields (name, ROS type, kind, range, default);
-what the page sends back goes through ros2cli_lite's set_message_fields, the same validation as
+what the page sends back goes through rosidl_runtime_py's set_message_fields, the same validation as
 `ros2 service call` (type, range, unknown fields), before anything reaches ROS.
 """
 
@@ -9,14 +9,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from ros2cli_lite.api import import_type
-from ros2cli_lite.convert import (
-    FLOAT32_MAX,
-    INTEGER_RANGES,
-    FieldError,
-    message_to_ordereddict,
-    set_message_fields,
-)
+from rosidl_runtime_py.set_message import FLOAT32_MAX, INTEGER_RANGES, FieldError
+
+from rosidl_runtime_py import message_to_ordereddict, set_message_fields, utilities
 
 
 class FormError(ValueError):
@@ -24,9 +19,11 @@ class FormError(ValueError):
 
 
 def interface_class(name: str, kind: str) -> Any:
+    getter = {'msg': utilities.get_message, 'srv': utilities.get_service,
+              'action': utilities.get_action}[kind]
     try:
-        return import_type(name, kind)
-    except ValueError:
+        return getter(name)
+    except (ImportError, AttributeError, ValueError):
         raise FormError(f"unknown {kind} type '{name}'") from None
 
 
@@ -94,7 +91,7 @@ def build(msg_class: Any, values: Any) -> Any:
     try:
         set_message_fields(msg, values if values is not None else {})
     except FieldError as error:
-        raise FormError(str(error)) from None
+        raise FormError(error.explanation) from None
     return msg
 
 

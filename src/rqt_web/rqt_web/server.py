@@ -126,7 +126,7 @@ def _error(message: str) -> web.Response:
 
 async def call_service(request: web.Request) -> web.Response:
     bridge: RosBridge = request.app['bridge']
-    from ros2cli_lite.convert import message_to_ordereddict
+    from rosidl_runtime_py import message_to_ordereddict
     try:
         body = await _json_body(request)
         name, srv_type = str(body.get('name', '')), str(body.get('type', ''))
@@ -360,7 +360,8 @@ class Session:
 
     def monitor_report(self) -> None:
         from rclpy.serialization import deserialize_message
-        from ros2cli_lite.convert import message_to_yaml
+
+        from rosidl_runtime_py import message_to_yaml
         now = time.monotonic()
         for (topic, msg_type), stats in self.monitors.items():
             arrivals = [a for a in stats['arrivals'] if a[0] >= now - MONITOR_WINDOW]
@@ -380,7 +381,7 @@ class Session:
 
     # -- actions
     async def op_goal(self, message: dict) -> None:
-        from ros2cli_lite.convert import message_to_ordereddict
+        from rosidl_runtime_py import message_to_ordereddict
         goal_id = str(message.get('id', ''))
         name, action_type = str(message.get('action', '')), str(message.get('type', ''))
         action_class = forms.interface_class(action_type, 'action')
@@ -406,7 +407,8 @@ class Session:
 
     async def _await_result(self, goal_id: str, handle: Any) -> None:
         from action_msgs.msg import GoalStatus
-        from ros2cli_lite.convert import message_to_ordereddict
+
+        from rosidl_runtime_py import message_to_ordereddict
         pending = await self.bridge.run(handle.get_result_async)
         result = await self.bridge.to_asyncio(pending)
         self.goals.pop(goal_id, None)

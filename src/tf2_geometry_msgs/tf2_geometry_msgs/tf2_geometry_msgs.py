@@ -63,6 +63,10 @@ def do_transform_pose(pose: Pose, transform: TransformStamped) -> Pose:
         transform, pose.position.x, pose.position.y, pose.position.z)
     o = pose.orientation
     x, y, z, w = multiply(rotation, (o.x, o.y, o.z, o.w))
+    if w < 0:
+        # q and -q are the same rotation; upstream returns the one with w >= 0 (it goes
+        # through a rotation matrix), and so do we: e.g. two half turns give w = +1.
+        x, y, z, w = -x, -y, -z, -w
     result.orientation.x, result.orientation.y = x, y
     result.orientation.z, result.orientation.w = z, w
     return result

@@ -22,6 +22,7 @@ from tf2_py.exceptions import (
 from tf2_py.maths import IDENTITY, Transform, compose, inverse
 from tf2_py.time_cache import Entry, StaticCache, TimeCache, display_time, is_finite
 from tf2_py.transform_message import transform_stamped
+from tf2_py.velocity import Twist, lookup_velocity
 
 DEFAULT_CACHE_TIME = 10_000_000_000  # ns, tf2's BUFFER_CORE_DEFAULT_CACHE_TIME
 MAX_GRAPH_DEPTH = 1000
@@ -56,11 +57,12 @@ class BufferCore:
         return rclpy.duration.Duration(nanoseconds=self._max_age)
 
     # --- input ----------------------------------------------------------------------------
-    def set_transform(self, transform: TransformStamped, authority: str) -> bool:
-        return self._set(transform, authority, False)
+    # Both return None, as upstream's binding does (a refused transform is logged, not told).
+    def set_transform(self, transform: TransformStamped, authority: str) -> None:
+        self._set(transform, authority, False)
 
-    def set_transform_static(self, transform: TransformStamped, authority: str) -> bool:
-        return self._set(transform, authority, True)
+    def set_transform_static(self, transform: TransformStamped, authority: str) -> None:
+        self._set(transform, authority, True)
 
     def _set(self, transform: TransformStamped, authority: str, is_static: bool) -> bool:
         parent = transform.header.frame_id.lstrip('/')
@@ -69,7 +71,7 @@ class BufferCore:
         entry: Entry = (parent, t.x, t.y, t.z, q.x, q.y, q.z, q.w)
         if not self._valid(entry, child, authority):
             return False
-        stamp = transform.header.stamp.sec * 1_000_000_000 + transform.header.stamp.nanosec
+        stamp = nanoseconds(transform.header.stamp)  # a Time message or an rclpy Time
         with self._lock:
             cache = self._caches.get(child)
             if cache is None or cache.is_static != is_static:
@@ -183,6 +185,26 @@ class BufferCore:
         if code != NO_ERROR:
             raise TransformException(message)
         return rclpy.time.Time(nanoseconds=time)
+
+    # --- velocity (tf2's lookupVelocity; the tuples upstream's binding returns) ------------
+    def lookupVelocityCore(self, tracking_frame: str, observation_frame: str, time: Any,
+                           averaging_interval: Any) -> Twist:
+        """((vx, vy, vz), (wx, wy, wz)) of tracking_frame seen from observation_frame."""
+        return self.lookupVelocityFullCore(tracking_frame, observation_frame, observation_frame,
+                                           (0.0, 0.0, 0.0), tracking_frame, time,
+                                           averaging_interval)
+
+    def lookupVelocityFullCore(self, tracking_frame: str, observation_frame: str,
+                               reference_frame: str, reference_point: tuple,
+                               reference_point_frame: str, time: Any,
+                               averaging_interval: Any) -> Twist:
+        with self._lock:
+            code, _, latest = self._latest_common_time(observation_frame, tracking_frame)
+            return lookup_velocity(
+                lambda target, source, at: self._lookup(target, source, at)[0],
+                latest if code == NO_ERROR else 0, tracking_frame, observation_frame,
+                reference_frame, tuple(float(c) for c in reference_point),
+                reference_point_frame, nanoseconds(time), nanoseconds(averaging_interval))
 
     # --- introspection --------------------------------------------------------------------
     def all_frames_as_yaml(self, current_time: Any = None) -> str:

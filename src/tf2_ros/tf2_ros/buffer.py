@@ -51,15 +51,13 @@ class Buffer(BufferCore, BufferInterface):
             'Detected jump back in time. Clearing tf buffer.')
         self.clear()
 
-    def set_transform(self, transform: TransformStamped, authority: str) -> bool:
-        stored = super().set_transform(transform, authority)
+    def set_transform(self, transform: TransformStamped, authority: str) -> None:
+        super().set_transform(transform, authority)
         self._call_new_data_callbacks()
-        return stored
 
-    def set_transform_static(self, transform: TransformStamped, authority: str) -> bool:
-        stored = super().set_transform_static(transform, authority)
+    def set_transform_static(self, transform: TransformStamped, authority: str) -> None:
+        super().set_transform_static(transform, authority)
         self._call_new_data_callbacks()
-        return stored
 
     def _call_new_data_callbacks(self) -> None:
         with self._new_data:

@@ -65,7 +65,7 @@ def main(args: argparse.Namespace) -> int | str:
 
 
 def _run_goal(node, client, goal, args: argparse.Namespace) -> int | str:
-    from ros2cli_lite.convert import message_to_yaml
+    from rosidl_runtime_py import message_to_yaml
     print('Waiting for an action server to become available...', flush=True)
     if not _wait_for_server(client, args.timeout):
         return (f"Action server '{args.action_name}' did not become available within "

@@ -18,7 +18,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def main(args: argparse.Namespace) -> int:
     from ros2cli_lite.api import import_type
-    from ros2cli_lite.convert import message_to_yaml
+    from rosidl_runtime_py import message_to_yaml
     parts = args.type.split('/')
     kind = parts[1] if len(parts) == 3 else None
     interface = None

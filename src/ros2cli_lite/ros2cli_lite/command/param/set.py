@@ -55,8 +55,8 @@ def runs_in_daemon(_args: argparse.Namespace) -> bool:
 def main(args: argparse.Namespace) -> int | str:
     from rcl_interfaces.msg import Parameter
     from rcl_interfaces.srv import SetParameters
+    from rosidl_runtime_py.set_message import INTEGER_RANGES
 
-    from ros2cli_lite.convert import INTEGER_RANGES
     from ros2cli_lite.node import cli_node
     value = parameter_value(args.value)
     low, high = INTEGER_RANGES['int64']

@@ -32,8 +32,9 @@ def main(args: argparse.Namespace) -> int | str:
     from rclpy.qos import qos_profile_services_default
 
     from ros2cli_lite.api import import_type
-    from ros2cli_lite.convert import message_to_ordereddict, to_yaml
+    from ros2cli_lite.convert import to_yaml
     from ros2cli_lite.node import cli_node, spin_once
+    from rosidl_runtime_py import message_to_ordereddict
     type_name = args.service_type
     if type_name is None:
         found, _ = lookup(args)

@@ -35,9 +35,10 @@ def runs_in_daemon(args: argparse.Namespace) -> bool:
 
 def main(args: argparse.Namespace) -> int | str:
     from ros2cli_lite.api import import_type
-    from ros2cli_lite.convert import message_to_yaml, to_yaml
+    from ros2cli_lite.convert import to_yaml
     from ros2cli_lite.node import cli_node, spin_once
     from ros2cli_lite.qos import subscription_events, subscription_qos
+    from rosidl_runtime_py import message_to_yaml
     fields = args.field.split('.') if args.field else []
     with cli_node(spin_time=args.spin_time) as node:
         if args.message_type:
@@ -70,7 +71,7 @@ def main(args: argparse.Namespace) -> int | str:
                         f"no field '{field}'"
                     return
             if hasattr(value, 'get_fields_and_field_types'):
-                text = message_to_yaml(value, args.flow_style)
+                text = message_to_yaml(value, flow_style=args.flow_style)
             elif isinstance(value, (list, tuple)) or type(value).__name__ in ('array', 'ndarray'):
                 text = to_yaml(list(value), args.flow_style)
             else:
