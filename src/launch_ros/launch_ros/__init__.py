@@ -1,9 +1,16 @@
-"""launch_ros: ROS 2 actions and substitutions for launch (upstream's module paths)."""
+"""launch_ros: ROS 2 actions, descriptions and substitutions for launch (upstream's modules)."""
 
 import os
 
 from launch._missing import module_getattr
 
-from launch_ros import actions, parameter_descriptions, substitutions  # noqa: F401
+from launch_ros import (  # noqa: F401
+    actions,
+    descriptions,
+    events,
+    parameter_descriptions,
+    substitutions,
+    utilities,
+)
 
 __getattr__ = module_getattr(__name__, os.path.dirname(__file__))
