@@ -67,9 +67,11 @@ class LaunchTestRunner:
             IncludeLaunchDescription(LaunchDescriptionSource(description),
                                      launch_arguments=self._arguments()),
         ]))
+        # As upstream: test_args are the launch arguments; the parameters of a parametrized
+        # description are injected by their own names, next to its test context.
         injected = {'proc_info': proc_info, 'proc_output': proc_output,
-                    'test_args': dict(test_run.param_args), 'launch_service': service,
-                    **extra_context}
+                    'test_args': dict(self._arguments()), 'launch_service': service,
+                    **extra_context, **test_run.param_args}
 
         def run_active_tests() -> None:
             try:
@@ -79,7 +81,7 @@ class LaunchTestRunner:
                         'launch did not reach the ReadyToTest action')
                     return
                 test_run.bind(test_run.pre_shutdown_tests, injected, injected)
-                test_run.pre_shutdown_tests.run(result)
+                _run_suite(test_run.pre_shutdown_tests, result)
             finally:
                 tests_done.set()
                 _shutdown_soon(service)
@@ -104,9 +106,20 @@ class LaunchTestRunner:
             final = {**injected, 'proc_info': proc_info._proc_info_handler,
                      'proc_output': proc_output._io_handler}
             test_run.bind(test_run.post_shutdown_tests, final, final)
-            test_run.post_shutdown_tests.run(result)
+            _run_suite(test_run.post_shutdown_tests, result)
         result.duration = time.monotonic() - started
         return result
+
+
+def _run_suite(suite: unittest.TestSuite, result: TestResult) -> None:
+    """Run a suite into a result that earlier suites used too.
+
+    unittest remembers on the result the class of the last test it ran, and tears that class
+    down when the next test's class differs, even in a later suite: then the active tests'
+    tearDownClass would run a second time when the post-shutdown tests start. Forget it.
+    """
+    result._previousTestClass = None  # type: ignore[attr-defined]
+    suite.run(result)
 
 
 def _shutdown_soon(service: LaunchService) -> None:
