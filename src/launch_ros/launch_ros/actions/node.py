@@ -45,6 +45,38 @@ _NAME = re.compile(r'^[A-Za-z_][A-Za-z0-9_]*$')
 _NAMESPACE = re.compile(r'^(/[A-Za-z_][A-Za-z0-9_]*)*$|^/$')
 
 
+_TYPES = {'str': str, 'int': int, 'float': float, 'bool': bool, 'list_of_str': list[str],
+          'list_of_int': list[int], 'list_of_float': list[float], 'list_of_bool': list[bool]}
+
+
+def _parameter_value(value: Any, separator: str | None, type_name: str | None,
+                     parser: Parser) -> ParameterValue:
+    """A <param value=...> as a ParameterValue: typed values (YAML launch files) as they are,
+    text with its substitutions, `value-sep` splitting text into a list."""
+    from launch.frontend import FrontendError
+    if type_name is not None and type_name not in _TYPES:
+        raise FrontendError(f"<param type='{type_name}'> is not one of "
+                            f"{', '.join(sorted(_TYPES))}")
+    value_type = None if type_name is None else _TYPES[type_name]
+    if isinstance(value, str) and separator:
+        value = value.split(separator)
+    if isinstance(value, list):
+        items = []
+        for item in value:
+            if isinstance(item, str) and value_type is None:
+                try:  # as upstream: each item read as YAML, kept as text if it is no value
+                    loaded = yaml.safe_load(item)
+                    item = loaded if isinstance(loaded, (bool, int, float, str)) else item
+                except yaml.YAMLError:
+                    pass
+            items.append(parser.parse_substitution(item)
+                         if isinstance(item, str) and '$(' in item else item)
+        return ParameterValue(items, value_type=value_type)
+    if isinstance(value, str):
+        return ParameterValue(parser.parse_substitution(value), value_type=value_type)
+    return ParameterValue(value, value_type=value_type)
+
+
 def _validate(name: str | None, namespace: str | None) -> None:
     """ValueError naming what is wrong, as rcl would refuse it later (less clearly)."""
     if name is not None and not _NAME.match(name):
@@ -60,26 +92,53 @@ class Node(ExecuteProcess):
     UNSPECIFIED_NODE_NAME = '<node_name_unspecified>'
     UNSPECIFIED_NODE_NAMESPACE = '<node_namespace_unspecified>'
 
+    @staticmethod
+    def parse_nested_parameters(params: list[Entity], parser: Parser) -> list[Any]:
+        """<param> tags as Node's `parameters`: a file per `from`, a dict per `name` (nested
+        <param>s make nested dicts)."""
+        from launch.frontend import FrontendError
+
+        def nested(entities: list[Entity]) -> dict[Any, Any]:
+            result: dict[Any, Any] = {}
+            for param in entities:
+                name = tuple(parser.parse_substitution(param.get('name', required=True)))
+                children = param.children_of('param')
+                value = param.get('value')
+                if children and (value is not None or param.get('type') is not None):
+                    raise FrontendError(f"<param name='{param.get('name')}'>: nested <param>s "
+                                        'and a value or type are mutually exclusive')
+                if children:
+                    result[name] = nested(children)
+                elif value is None:
+                    raise FrontendError(f"<param name='{param.get('name')}'> needs a value "
+                                        'attribute or nested <param>s')
+                else:
+                    result[name] = _parameter_value(value, param.get('value-sep'),
+                                                    param.get('type'), parser)
+                param.check_all_used()
+            return result
+
+        parameters: list[Any] = []
+        for param in params:
+            if param.get('from') is not None:
+                if param.get('name') is not None:
+                    raise FrontendError("<param>: 'name' and 'from' are mutually exclusive")
+                allow = param.get('allow_substs')
+                parameters.append(ParameterFile(
+                    param.get_substitutions('from'),
+                    allow_substs=False if allow is None else allow if isinstance(allow, bool)
+                    else parser.parse_substitution(allow)))
+                param.check_all_used()
+            elif param.get('name') is not None:
+                parameters.append(nested([param]))
+            else:
+                raise FrontendError("<param> needs a 'name' or a 'from' attribute")
+        return parameters
+
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
         from launch.frontend import FrontendError
-        parameters: list[Any] = []
-        values: dict[Any, Any] = {}
-        for child in entity.children_of('param'):
-            if child.get('from') is not None:
-                allow = child.get('allow_substs')
-                parameters.append(ParameterFile(
-                    child.get_substitutions('from'),
-                    allow_substs=False if allow is None else allow if isinstance(allow, bool)
-                    else parser.parse_substitution(allow)))
-            else:
-                value = child.get('value', required=True)
-                values[child.get('name', required=True)] = (
-                    value if isinstance(value, (bool, int, float, list))
-                    else ParameterValue(parser.parse_substitution(value)))
-            child.check_all_used()
-        if values:
-            parameters.insert(0, values)
+        parameters = cls.parse_nested_parameters(entity.children_of('param'), parser)
         remappings = []
         for child in entity.children_of('remap'):
             remappings.append((child.get_substitutions('from', True),
