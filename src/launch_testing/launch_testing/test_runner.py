@@ -7,6 +7,7 @@ down. Post-shutdown tests run after the launch ended, with every exit code known
 
 from __future__ import annotations
 
+import inspect
 import threading
 import time
 import unittest
@@ -34,10 +35,21 @@ class LaunchTestRunner:
         self._debug = debug
 
     def validate(self) -> None:
-        """Refuse launch arguments the description does not declare, naming them."""
+        """Refuse malformed launch arguments, and test descriptions whose parameters are
+        neither `ready_fn` nor the ones @launch_testing.parametrize gives."""
         for argument in self._launch_file_arguments:
             if ':=' not in argument:
                 raise ValueError(f"launch argument '{argument}' is not of the form name:=value")
+        for run in self._test_runs:
+            function = run._test_description_function
+            function = getattr(function, 'func', function)  # parametrize binds with a partial
+            parameters = set(inspect.signature(function).parameters)
+            for name in sorted(parameters - {'ready_fn'} - set(run.param_args)):
+                raise Exception(f"generate_test_description has unexpected extra argument "
+                                f"'{name}'")
+            for name in sorted(set(run.param_args) - parameters):
+                raise Exception('Could not find an argument in generate_test_description '
+                                f"matching parametrized argument '{name}'")
 
     def run(self) -> dict[TestRun, TestResult]:
         return {run: self._run_test(run) for run in self._test_runs}

@@ -50,11 +50,13 @@ class ROSTimer(TimerAction):
         return self.__future
 
     def cancel(self) -> None:
+        if self.__timer is not None:
+            self.__timer.cancel()
         self._finish()
 
     def _finish(self) -> None:
-        if self.__timer is not None:
-            self.__timer.cancel()
+        # The ROS timer is left alone: on shutdown it goes with the launch's node, which may
+        # already be destroyed.
         if self.__future is not None and not self.__future.done():
             self.__future.set_result(None)
 
@@ -70,7 +72,7 @@ class ROSTimer(TimerAction):
         def fire() -> None:  # on the launch's loop
             if self.__future is not None and not self.__future.done():
                 context.emit_event_sync(TimerEvent(timer_action=self))
-                self._finish()
+                self.cancel()
 
         # The ROS timer ticks on the adapter's thread: hand the firing to the launch's loop.
         self.__timer = get_ros_node(context).create_timer(
