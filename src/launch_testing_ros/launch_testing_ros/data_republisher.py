@@ -19,9 +19,11 @@ class DataRepublisher:
         self.__transform_fn = transform_fn
         self.__num_received = 0
         self.__republished: list[Any] = []
+        # The publisher first: while the first message is on its way, its subscribers can
+        # discover it, and that message is not lost to discovery.
+        self.__publisher = node.create_publisher(msg_type, publish_topic, 10)
         self.__subscription = node.create_subscription(msg_type, listen_topic,
                                                        self.__on_message, 10)
-        self.__publisher = node.create_publisher(msg_type, publish_topic, 10)
 
     def shutdown(self) -> None:
         """Stop republishing."""
