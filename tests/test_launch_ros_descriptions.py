@@ -1,22 +1,35 @@
 """launch_ros's descriptions and utilities as a launch file uses them, without running it:
 typed parameter values, Node's `parameters` list read as upstream reads it, namespaces, and
 the command line Node builds from SetParameter / SetParametersFromFile / SetRemap /
-PushROSNamespace (the nodes themselves run in test_launch_ros.py)."""
+PushROSNamespace (the nodes themselves run in test_launch_ros.py); ROSTimer on sim time,
+SetROSLogDir and a component container in a real launch."""
 
 from __future__ import annotations
 
+import sys
+import time
 from pathlib import Path
 
 import pytest
 import yaml
-from launch.actions import PopLaunchConfigurations, PushLaunchConfigurations
+from builtin_interfaces.msg import Time
+from launch.actions import (
+    ExecuteProcess,
+    OpaqueFunction,
+    PopLaunchConfigurations,
+    PushLaunchConfigurations,
+)
 from launch.substitutions import EnvironmentVariable, TextSubstitution
 from launch_ros.actions import (
+    ComposableNodeContainer,
     Node,
     PushROSNamespace,
+    ROSTimer,
     SetParameter,
     SetParametersFromFile,
     SetRemap,
+    SetROSLogDir,
+    SetUseSimTime,
 )
 from launch_ros.actions.load_composable_nodes import get_composable_node_load_request
 from launch_ros.descriptions import ComposableNode, Parameter, ParameterFile, ParameterValue
@@ -27,8 +40,10 @@ from launch_ros.utilities import (
     normalize_parameters,
     prefix_namespace,
 )
+from rosgraph_msgs.msg import Clock
 
-from launch import LaunchContext
+from launch import LaunchContext, LaunchDescription, LaunchService
+from support import Background
 
 
 def text(value: str) -> TextSubstitution:
@@ -162,3 +177,52 @@ def test_composable_node_load_request_as_upstream_builds_it(tmp_path):
     assert list(request.remap_rules) == ['image:=raw', 'info:=camera_info']
     assert [(p.name, p.value.integer_value) for p in request.parameters] == [
         ('every', 1), ('mine', 2), ('fps', 30), ('width', 640)]
+
+
+def run_launch(actions: list) -> tuple[int, LaunchService]:
+    service = LaunchService()
+    service.include_launch_description(LaunchDescription(actions))
+    return service.run(), service
+
+
+def test_ros_timer_follows_the_ros_clock_of_the_launch(probe, domain, monkeypatch):
+    # With SetUseSimTime the launch's own node follows /clock: a 100 s timer fires after
+    # 100 s of sim time, which the probe publishes 20 s at a time every 0.1 s.
+    monkeypatch.setenv('ROS_DOMAIN_ID', str(domain))
+    clock = probe.node.create_publisher(Clock, '/clock', 10)
+    now = [0]
+
+    def tick() -> None:
+        now[0] += 20
+        clock.publish(Clock(clock=Time(sec=now[0])))
+
+    probe.node.create_timer(0.1, tick)
+    fired: list[float] = []
+    started = time.monotonic()
+    with Background(probe):
+        code, _ = run_launch([
+            SetUseSimTime(True),
+            ROSTimer(period=100.0, actions=[
+                OpaqueFunction(function=lambda _context: fired.append(time.monotonic()))]),
+        ])
+    assert code == 0 and len(fired) == 1
+    assert fired[0] - started < 10  # not 100 s of wall time
+
+
+def test_set_ros_log_dir_sets_where_later_nodes_log(tmp_path, monkeypatch):
+    monkeypatch.setenv('ROS_LOG_DIR', str(tmp_path))
+    seen = tmp_path / 'seen.txt'
+    code, _ = run_launch([
+        SetROSLogDir('inner'),
+        ExecuteProcess(cmd=[sys.executable, '-c', 'import os, sys; open(sys.argv[1], "w")'
+                            '.write(os.environ["ROS_LOG_DIR"])', str(seen)]),
+    ])
+    assert code == 0 and seen.read_text() == str(tmp_path / 'inner')
+
+
+def test_a_component_container_fails_with_one_clear_line():
+    code, _ = run_launch([ComposableNodeContainer(
+        name='container', namespace='', package='rclcpp_components',
+        executable='component_container',
+        composable_node_descriptions=[ComposableNode(package='p', plugin='p::Node')])])
+    assert code == 1

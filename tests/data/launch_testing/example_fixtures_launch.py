@@ -3,13 +3,14 @@ the launch argument `who` (given as who:=NAME)."""
 import sys
 import unittest
 
-import launch
 import launch.actions
 import launch.substitutions
-import launch_testing
 import launch_testing.actions
 import launch_testing.util
 import pytest
+
+import launch
+import launch_testing
 
 
 @pytest.mark.launch_test
@@ -35,9 +36,10 @@ class TestWhileRunning(unittest.TestCase):
     def tearDownClass(cls):
         print('fixture: active tearDownClass', flush=True)
 
-    def test_greets_the_launch_argument(self, proc_output, test_args):
+    def test_greets_the_launch_argument(self, proc_info, proc_output, test_args):
         proc_output.assertWaitFor(f"hello {test_args['who']}", process='greeter',
                                   timeout=10, stream='stdout')
+        proc_info.assertWaitForShutdown(process='greeter', timeout=10)
 
 
 @launch_testing.post_shutdown_test()

@@ -3,13 +3,14 @@ reads its filtered output, as upstream's ros2cli tests start `ros2 ...`."""
 import sys
 import unittest
 
-import launch
 import launch.actions
-import launch_testing
 import launch_testing.actions
 import launch_testing.tools
 import launch_testing.util
 import pytest
+
+import launch
+import launch_testing
 
 
 @pytest.mark.launch_test
