@@ -193,3 +193,12 @@ def test_launch_test_show_args(ros_env) -> None:
                                     "    'who':\n"), listed.stdout
     none = run(ros_env, 'launch_test', str(EXAMPLES / 'example_talker_launch.py'), '--show-args')
     assert none.returncode == 0 and none.stdout == 'No arguments.\n'
+
+
+def test_launch_process_starts_a_command_mid_test(ros_env) -> None:
+    # As ros2cli's tests start `ros2 ...`: through launch's IncludeLaunchDescription event,
+    # emitted from the test's thread, with the output filtered and matched line by line.
+    result = run(ros_env, 'launch_test', str(EXAMPLES / 'example_mid_test_process_launch.py'))
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert 'test_runs_a_command_mid_test (example_mid_test_process_launch.TestMidTest) ... ok' \
+        in result.stderr

@@ -3,7 +3,9 @@
     republisher = DataRepublisher(node, 'chatter', 'chatter_upper', String,
                                   lambda msg: String(data=msg.data.upper()))
 
-The transform returns the message to publish, or None to drop it.
+The transform returns the message to publish, or None to drop it. Messages that arrive
+before a subscriber of the publish topic has discovered the republisher are counted as
+received, not republished: every message counted as republished reached the subscribers.
 """
 
 from __future__ import annotations
@@ -44,6 +46,9 @@ class DataRepublisher:
 
     def __on_message(self, msg: Any) -> None:
         self.__num_received += 1
+        if self.__publisher.get_subscription_count() == 0:
+            # Nobody subscribed (or discovered us) yet: DDS would drop it; not republished.
+            return
         transformed = self.__transform_fn(msg)
         if transformed:
             self.__republished.append(msg)
