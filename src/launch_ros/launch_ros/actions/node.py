@@ -49,32 +49,40 @@ _TYPES = {'str': str, 'int': int, 'float': float, 'bool': bool, 'list_of_str': l
           'list_of_int': list[int], 'list_of_float': list[float], 'list_of_bool': list[bool]}
 
 
-def _parameter_value(value: Any, separator: str | None, type_name: str | None,
-                     parser: Parser) -> ParameterValue:
+def _parameter_value(param: Entity, parser: Parser) -> ParameterValue:
     """A <param value=...> as a ParameterValue: typed values (YAML launch files) as they are,
-    text with its substitutions, `value-sep` splitting text into a list."""
+    text with its substitutions, `value-sep` splitting text into a list, `type` its type."""
     from launch.frontend import FrontendError
+    type_name = param.get('type')
     if type_name is not None and type_name not in _TYPES:
         raise FrontendError(f"<param type='{type_name}'> is not one of "
                             f"{', '.join(sorted(_TYPES))}")
     value_type = None if type_name is None else _TYPES[type_name]
-    if isinstance(value, str) and separator:
-        value = value.split(separator)
+    if hasattr(param, 'get_attr'):
+        # launch's upstream Entity API reads value-sep and types the value itself.
+        value = param.get_attr('value', data_type=value_type, optional=True)
+    else:
+        value = param.get('value')
+        separator = param.get('value-sep')
+        if isinstance(value, str) and separator:
+            value = [_yaml_scalar(item) if value_type is None else item
+                     for item in value.split(separator)]
     if isinstance(value, list):
-        items = []
-        for item in value:
-            if isinstance(item, str) and value_type is None:
-                try:  # as upstream: each item read as YAML, kept as text if it is no value
-                    loaded = yaml.safe_load(item)
-                    item = loaded if isinstance(loaded, (bool, int, float, str)) else item
-                except yaml.YAMLError:
-                    pass
-            items.append(parser.parse_substitution(item)
-                         if isinstance(item, str) and '$(' in item else item)
-        return ParameterValue(items, value_type=value_type)
+        value = [parser.parse_substitution(item) if isinstance(item, str) and '$(' in item
+                 else item for item in value]
+        return ParameterValue(value, value_type=value_type)
     if isinstance(value, str):
         return ParameterValue(parser.parse_substitution(value), value_type=value_type)
     return ParameterValue(value, value_type=value_type)
+
+
+def _yaml_scalar(text: str) -> Any:
+    """An item of a value-sep list read as YAML, kept as text if it is no scalar."""
+    try:
+        loaded = yaml.safe_load(text)
+    except yaml.YAMLError:
+        return text
+    return loaded if isinstance(loaded, (bool, int, float, str)) else text
 
 
 def _validate(name: str | None, namespace: str | None) -> None:
@@ -113,8 +121,7 @@ class Node(ExecuteProcess):
                     raise FrontendError(f"<param name='{param.get('name')}'> needs a value "
                                         'attribute or nested <param>s')
                 else:
-                    result[name] = _parameter_value(value, param.get('value-sep'),
-                                                    param.get('type'), parser)
+                    result[name] = _parameter_value(param, parser)
                 param.check_all_used()
             return result
 
@@ -137,16 +144,12 @@ class Node(ExecuteProcess):
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        from launch.frontend import FrontendError
         parameters = cls.parse_nested_parameters(entity.children_of('param'), parser)
         remappings = []
         for child in entity.children_of('remap'):
             remappings.append((child.get_substitutions('from', True),
                                child.get_substitutions('to', True)))
             child.check_all_used()
-        for child in entity.children:
-            if child.tag not in ('param', 'remap', 'env'):
-                raise FrontendError(f'<node> cannot hold <{child.tag}>')
         namespace = entity.get('namespace', entity.get('ns'))
         kwargs = {'package': entity.get_substitutions('pkg'),
                   'executable': entity.get_substitutions('exec', True),
@@ -156,7 +159,9 @@ class Node(ExecuteProcess):
                   'arguments': entity.get_words('args'),
                   'ros_arguments': entity.get_words('ros_args'),
                   'parameters': parameters or None, 'remappings': remappings or None}
-        return cls, {**kwargs, **cls.parse_process_options(entity)}
+        # ExecuteProcess reads the process options (output, env, respawn, ...), as for any
+        # process tag.
+        return cls, {**kwargs, **ExecuteProcess.parse_process_options(entity)}
 
     def __init__(self, *, executable: Any, package: Any = None, name: Any = None,
                  namespace: Any = None, exec_name: Any = None, parameters: Any = None,
