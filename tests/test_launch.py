@@ -269,7 +269,9 @@ def test_bad_launch_files_give_one_clear_line(ros_env, tmp_path):
         from launch_ros.actions import ComposableNodeContainer
 
         def generate_launch_description():
-            return LaunchDescription([])
+            return LaunchDescription([ComposableNodeContainer(
+                name='container', namespace='', package='rclcpp_components',
+                executable='component_container')])
         ''')
     unknown_keyword = write(tmp_path / 'keyword.launch.py', '''
         from launch import LaunchDescription
@@ -284,10 +286,11 @@ def test_bad_launch_files_give_one_clear_line(ros_env, tmp_path):
         (str(syntax),): 'Caught exception when trying to load file of format [py]: '
                         'SyntaxError: invalid syntax (syntax.launch.py, line 3)',
         (str(unknown_package),): "\"package 'no_such_pkg' not found, searching: [",
-        (str(unsupported),): 'launch_ros.actions.ComposableNodeContainer is not supported '
-                             'by this launch (see docs/launch.md)',
-        (str(unknown_keyword),): "TypeError: Action.__init__() got an unexpected keyword "
-                                 "argument 'composable'",
+        (str(unsupported),): 'ComposableNodeContainer: composable nodes need a component '
+                             'container (rclcpp_components), which this workspace does not '
+                             'have; start the nodes with launch_ros.actions.Node instead',
+        (str(unknown_keyword),): "Node: argument 'composable' is not supported by this "
+                                 'launch (see docs/launch.md)',
         (str(unknown_tag),): 'Caught exception when trying to load file of format [xml]: '
                              'RuntimeError: Unrecognized entity of the type: rosparam',
         ('no_such_pkg', 'x.launch.py'): "Package 'no_such_pkg' not found: \"package "

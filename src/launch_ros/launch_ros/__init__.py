@@ -1,4 +1,4 @@
-"""launch_ros: ROS 2 actions and substitutions for launch (upstream's module paths)."""
+"""launch_ros: ROS 2 actions, descriptions and substitutions for launch (upstream's modules)."""
 
 import os
 
@@ -6,10 +6,13 @@ from launch._missing import module_getattr
 
 from launch_ros import (  # noqa: F401
     actions,
+    actions,
+    descriptions,
     event_handlers,
     events,
     parameter_descriptions,
     substitutions,
+    utilities,
 )
 
 __getattr__ = module_getattr(__name__, os.path.dirname(__file__))

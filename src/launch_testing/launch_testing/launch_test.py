@@ -12,8 +12,9 @@ import sys
 import unittest
 from pathlib import Path
 from types import ModuleType
+from typing import Any
 
-from launch_testing import junit
+from launch_testing import junitxml
 from launch_testing.loader import LoadTestsFromPythonModule, TestRun
 from launch_testing.test_result import TestResult
 from launch_testing.test_runner import LaunchTestRunner
@@ -33,6 +34,18 @@ def load_module(path: Path) -> ModuleType:
     if not hasattr(module, 'generate_test_description'):
         raise ImportError(f'{path} has no generate_test_description function: not a launch test')
     return module
+
+
+def print_arguments(description: Any) -> None:
+    """The launch arguments a test description declares, as `launch_test --show-args` lists
+    them (upstream's format)."""
+    arguments = description.get_launch_arguments()
+    if not arguments:
+        print('No arguments.')
+        return
+    print("Arguments (pass arguments as '<name>:=<value>'):")
+    for argument in arguments:
+        print(f"\n    '{argument.name}':\n        {argument.description}")
 
 
 def report(results: dict[TestRun, TestResult], stream) -> None:
@@ -72,11 +85,13 @@ def main(argv: list[str] | None = None) -> int:
     if not args.launch_test_file.is_file():
         parser.error(f"launch test file '{args.launch_test_file}' does not exist")
     module = load_module(args.launch_test_file.resolve())
-    runs = LoadTestsFromPythonModule(module, name=args.launch_test_file.stem)
+    # As upstream: runs named '<package>.<file>.launch_tests', the XML's test suite names.
+    package = args.package_name or args.launch_test_file.stem
+    runs = LoadTestsFromPythonModule(
+        module, name=f'{package}.{args.launch_test_file.stem}.launch_tests')
     if args.show_args:
         for run in runs:
-            for argument in run.get_launch_description().get_launch_arguments():
-                print(f"    '{argument.name}':\n        {argument.description}")
+            print_arguments(run.get_launch_description())
         return 0
     runner = LaunchTestRunner(runs, launch_file_arguments=args.launch_args,
                               debug=args.verbose)
@@ -87,7 +102,7 @@ def main(argv: list[str] | None = None) -> int:
     results = runner.run()
     report(results, sys.stderr)
     if args.junit_xml is not None:
-        junit.write(results, args.junit_xml, module.__name__, args.package_name)
+        junitxml.write({str(run): result for run, result in results.items()}, args.junit_xml)
     return 0 if all(result.wasSuccessful() for result in results.values()) else 1
 
 

@@ -7,6 +7,7 @@ import re
 import time
 import unittest
 from dataclasses import dataclass
+from typing import Any
 
 
 @dataclass
@@ -26,8 +27,10 @@ class CaseResult:
 
 
 class TestResult(unittest.TestResult):
-    def __init__(self) -> None:
-        super().__init__()
+    def __init__(self, stream: Any = None, descriptions: Any = None,
+                 verbosity: Any = None) -> None:
+        # unittest.TextTestRunner makes its results with these arguments.
+        super().__init__(stream, descriptions, verbosity)
         self.cases: list[CaseResult] = []
         self.duration = 0.0
         self._started: dict[str, float] = {}
@@ -53,6 +56,28 @@ class TestResult(unittest.TestResult):
         """An error of the launch itself (no ReadyToTest, processes gone early)."""
         self.errors.append((_RunProblem(message), message))
         self.cases.append(CaseResult('launch_testing', 'launch', 0.0, 'error', message, message))
+
+
+class FailResult(TestResult):
+    """Every test of a run failed with one message (the launch itself failed)."""
+
+    def __init__(self, test_run: Any, message: str) -> None:
+        super().__init__()
+        for case in test_run.all_cases():
+            classname, _, name = case.id().rpartition('.')
+            self.failures.append((case, message))
+            self.cases.append(CaseResult(classname, name, 0.0, 'failure', message, message))
+
+
+class SkipResult(TestResult):
+    """Every test of a run skipped, with the reason."""
+
+    def __init__(self, test_run: Any, skip_reason: str) -> None:
+        super().__init__()
+        for case in test_run.all_cases():
+            classname, _, name = case.id().rpartition('.')
+            self.skipped.append((case, skip_reason))
+            self.cases.append(CaseResult(classname, name, 0.0, 'skipped', skip_reason, ''))
 
 
 def _exception_line(traceback_text: str) -> str:

@@ -34,13 +34,20 @@ class SequentialTextChecker:
                              f'near the last matched line:\n{self.get_nearby_lines()}')
 
     def get_nearby_lines(self) -> str:
-        """A few lines around where the last match ended."""
-        before = ''.join(self._output[:self._index]) + self._output[self._index][:self._offset] \
-            if self._output else ''
-        after = ''.join(self._output[self._index:])[self._offset:] if self._output else ''
-        head = before.split('\n')[-3:]
-        tail = after.split('\n')[:3]
-        return '\n'.join([*head[:-1], head[-1] + tail[0], *tail[1:]])
+        """The text around where the last match ended: back to the third line end before
+        it, on to the third line end after it (upstream's window)."""
+        first = max(0, self._index - 2)
+        window = ''.join(self._output[first:self._index + 4])
+        here = sum(len(chunk) for chunk in self._output[first:self._index]) + self._offset
+        start = here
+        for _ in range(3):
+            start = max(window.rfind('\n', 0, start), 0)
+        start = start + 1 if start else 0
+        end = here
+        for _ in range(3):
+            found = window.find('\n', end + 1)
+            end = found if found != -1 else end
+        return window[start:end]
 
 
 @contextmanager

@@ -30,7 +30,12 @@ class LaunchTestItem(pytest.Item):
 
         module = load_module(Path(self.path))
         runs = LoadTestsFromPythonModule(module, name=Path(self.path).stem)
-        results = LaunchTestRunner(runs).run()
+        # --launch-args may be given several times, each with several name:=value words.
+        launch_args = [word for words in self.config.getoption('--launch-args') or []
+                       for word in words]
+        runner = LaunchTestRunner(runs, launch_file_arguments=launch_args)
+        runner.validate()
+        results = runner.run()
         if not all(result.wasSuccessful() for result in results.values()):
             import io
             text = io.StringIO()
@@ -58,6 +63,17 @@ class LaunchTestItem(pytest.Item):
 class LaunchTestModule(pytest.File):
     def collect(self) -> Any:
         yield LaunchTestItem.from_parent(self, name=Path(self.path).stem)
+
+
+def pytest_addoption(parser: Any) -> None:
+    parser.addoption('--launch-args', action='append', nargs='*', default=[],
+                     help='name:=value arguments for the launch descriptions of launch tests')
+
+
+def pytest_configure(config: Any) -> None:
+    # Launch test files mark generate_test_description with it: known even with
+    # --strict-markers, as upstream's plugin declares it.
+    config.addinivalue_line('markers', 'launch_test: the test description of a launch test')
 
 
 def pytest_pycollect_makemodule(module_path: Path, parent: Any) -> Any:

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from launch.actions import ExecuteProcess
+from launch.actions import ExecuteLocal
+from launch.substitutions import TextSubstitution
 
 NO_CMD_ARGS = object()  # cmd_args meaning "started without arguments"
 
@@ -17,7 +18,12 @@ def _describe(process: Any) -> str:
     details = getattr(process, 'process_details', None)
     if details:
         return ' '.join([details['name'], *details['cmd'][1:]])
-    return f'{process.describe()} (not started)'
+    # Not launched: its command when it is plain text (upstream's message otherwise).
+    description = getattr(process, 'process_description', None)
+    cmd = getattr(description, 'cmd', None) or getattr(process, 'cmd', None) or []
+    if all(isinstance(sub, TextSubstitution) for part in cmd for sub in part):
+        return ' '.join(''.join(sub.text for sub in part) for part in cmd)
+    return 'Unknown - Process not launched yet'
 
 
 def _matches(process: Any, name: str, cmd_args: list[str] | object | None) -> bool:
@@ -43,12 +49,12 @@ def resolveProcesses(info_obj: Any, *, process: Any = None,
         if not known:
             raise NoMatchingProcessException('No data recorded for any process')
         return known
-    if isinstance(process, ExecuteProcess):
+    if isinstance(process, ExecuteLocal):  # ExecuteProcess is one
         if process in known:
             return [process]
         raise NoMatchingProcessException(f'No data recorded for proc {_describe(process)}')
     if not isinstance(process, str):
-        raise TypeError(f"proc argument must be 'ExecuteProcess' or 'str' not {type(process)}")
+        raise TypeError(f"proc argument must be 'ExecuteLocal' or 'str' not {type(process)}")
     if isinstance(cmd_args, str):
         cmd_args = [cmd_args]
     matches = [candidate for candidate in known if _matches(candidate, process, cmd_args)]

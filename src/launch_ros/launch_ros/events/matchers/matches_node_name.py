@@ -1,4 +1,4 @@
-"""matches_node_name: a matcher of the node actions (Node, LifecycleNode) named so."""
+"""matches_node_name: an event matcher for the Node action of one fully qualified name."""
 
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ from typing import Any
 
 
 def matches_node_name(node_name: str) -> Callable[[Any], bool]:
-    """True for the action whose node is `node_name` ('/' added if missing)."""
-    full = node_name if node_name.startswith('/') else '/' + node_name
-    return lambda action: action.node_name == full
+    """Matches a Node whose name is `node_name` ('/' added in front when missing)."""
+    if not node_name.startswith('/'):
+        node_name = f'/{node_name}'
+    return lambda action: getattr(action, 'node_name', None) == node_name

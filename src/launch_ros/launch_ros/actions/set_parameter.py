@@ -1,0 +1,46 @@
+"""SetParameter: a parameter given to every node after it, in its scope (`-p name:=value`)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from launch.action import Action
+from launch.frontend import expose_action
+
+from launch_ros._launch_api import normalize_to_list_of_substitutions
+from launch_ros.utilities import evaluate_parameter_dict, normalize_parameter_dict
+
+if TYPE_CHECKING:
+    from launch.frontend import Entity, Parser
+    from launch.launch_context import LaunchContext
+
+
+def append_configuration(context: Any, key: str, *items: Any) -> None:
+    """Add to a list launch configuration without changing the enclosing scope's list."""
+    context.launch_configurations[key] = [*context.launch_configurations.get(key, []), *items]
+
+
+@expose_action('set_parameter')
+class SetParameter(Action):
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        kwargs = {'name': entity.get('name', required=True),
+                  'value': entity.get_substitutions('value', True)}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
+
+    def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        name = tuple(normalize_to_list_of_substitutions(name))
+        self.__param_dict = normalize_parameter_dict({name: value})
+
+    @property
+    def name(self) -> Any:
+        return next(iter(self.__param_dict))
+
+    @property
+    def value(self) -> Any:
+        return next(iter(self.__param_dict.values()))
+
+    def execute(self, context: LaunchContext) -> None:
+        evaluated = evaluate_parameter_dict(context, self.__param_dict)
+        append_configuration(context, 'global_params', *evaluated.items())

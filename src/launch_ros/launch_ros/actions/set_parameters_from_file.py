@@ -1,0 +1,31 @@
+"""SetParametersFromFile: a parameters file given to every node after it, in its scope."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from launch.action import Action
+from launch.frontend import expose_action
+
+from launch_ros._launch_api import normalize_to_list_of_substitutions, perform_substitutions
+from launch_ros.actions.set_parameter import append_configuration
+
+if TYPE_CHECKING:
+    from launch.frontend import Entity, Parser
+    from launch.launch_context import LaunchContext
+
+
+@expose_action('set_parameters_from_file')
+class SetParametersFromFile(Action):
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        kwargs = {'filename': entity.get_substitutions('filename', True)}
+        return cls, {**kwargs, **cls.parse_condition(entity)}
+
+    def __init__(self, filename: Any, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self._input_file = normalize_to_list_of_substitutions(filename)
+
+    def execute(self, context: LaunchContext) -> None:
+        append_configuration(context, 'global_params',
+                             perform_substitutions(context, self._input_file))

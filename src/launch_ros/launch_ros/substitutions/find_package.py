@@ -1,0 +1,58 @@
+"""FindPackagePrefix / FindPackageShare: a package's install prefix and share directory."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from launch.frontend import expose_substitution
+
+from launch import SomeSubstitutionsType, Substitution
+from launch_ros._launch_api import (
+    describe,
+    normalize_to_list_of_substitutions,
+    perform_substitutions,
+)
+
+if TYPE_CHECKING:
+    from launch.launch_context import LaunchContext
+
+
+def _one_argument(name: str, data: list[list[Substitution]]) -> list[Substitution]:
+    if len(data) != 1:
+        raise TypeError(f'$({name} ...) takes one argument, got {len(data)}')
+    return data[0]
+
+
+@expose_substitution('find-pkg-prefix')
+class FindPackagePrefix(Substitution):
+    """The install prefix of a package."""
+
+    @classmethod
+    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
+        return cls, {'package': _one_argument('find-pkg-prefix', data)}
+
+    def __init__(self, package: SomeSubstitutionsType) -> None:
+        self.package = normalize_to_list_of_substitutions(package)
+
+    def find(self, package: str) -> str:
+        from ament_index_python.packages import get_package_prefix
+        return get_package_prefix(package)
+
+    def perform(self, context: LaunchContext) -> str:
+        return self.find(perform_substitutions(context, self.package))
+
+    def describe(self) -> str:
+        return f'Pkg(pkg={describe(self.package)})'
+
+
+@expose_substitution('find-pkg-share')
+class FindPackageShare(FindPackagePrefix):
+    """The share directory of a package."""
+
+    @classmethod
+    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
+        return cls, {'package': _one_argument('find-pkg-share', data)}
+
+    def find(self, package: str) -> str:
+        from ament_index_python.packages import get_package_share_directory
+        return get_package_share_directory(package)
