@@ -1,0 +1,33 @@
+"""`ros2 run demo_nodes_py add_two_ints_client_async`: the client with the answer taken in a
+done callback while the node spins."""
+import sys
+
+import rclpy
+from example_interfaces.srv import AddTwoInts
+from node_runtime.spinning import ros_session
+from rclpy.task import Future
+
+from demo_nodes_py.services.client_wait import spin_until_done, wait_for_service
+
+
+def main() -> int:
+    with ros_session() as stop:
+        node = rclpy.create_node('add_two_ints_client')
+        cli = node.create_client(AddTwoInts, 'add_two_ints')
+
+        def on_answer(future: Future) -> None:
+            if future.result() is not None:
+                node.get_logger().info(f'Result of add_two_ints: {future.result().sum}')
+            else:
+                node.get_logger().error(f'Exception while calling service: {future.exception()!r}')
+
+        if wait_for_service(cli, stop):
+            future = cli.call_async(AddTwoInts.Request(a=2, b=3))
+            future.add_done_callback(on_answer)
+            spin_until_done(node, future, stop)
+        node.destroy_node()
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
