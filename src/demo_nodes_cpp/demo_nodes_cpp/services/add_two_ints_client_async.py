@@ -2,7 +2,7 @@
 callback, which then shuts the process down."""
 import sys
 
-from demo_nodes_py.services.client_wait import spin_until_done, wait_for_service
+from demo_nodes_py.services.client_wait import spin_until, wait_for_service
 from example_interfaces.srv import AddTwoInts
 from node_runtime.spinning import ros_session
 from rclpy.node import Node
@@ -13,8 +13,10 @@ class ClientNode(Node):
     def __init__(self) -> None:
         super().__init__('add_two_ints_client')
         self.client = self.create_client(AddTwoInts, 'add_two_ints')
+        self.answered = False
 
     def on_answer(self, future: Future) -> None:
+        self.answered = True  # upstream's callback shuts the process down
         if future.result() is not None:
             self.get_logger().info(f'Result of add_two_ints: {future.result().sum}')
 
@@ -27,7 +29,7 @@ def main() -> int:
             return 0
         future = node.client.call_async(AddTwoInts.Request(a=2, b=3))
         future.add_done_callback(node.on_answer)
-        spin_until_done(node, future, stop)
+        spin_until(node, lambda: node.answered, stop)
         node.destroy_node()
     return 0
 

@@ -7,15 +7,17 @@ from example_interfaces.srv import AddTwoInts
 from node_runtime.spinning import ros_session
 from rclpy.task import Future
 
-from demo_nodes_py.services.client_wait import spin_until_done, wait_for_service
+from demo_nodes_py.services.client_wait import spin_until, wait_for_service
 
 
 def main() -> int:
     with ros_session() as stop:
         node = rclpy.create_node('add_two_ints_client')
         cli = node.create_client(AddTwoInts, 'add_two_ints')
+        answered = []
 
         def on_answer(future: Future) -> None:
+            answered.append(future)
             if future.result() is not None:
                 node.get_logger().info(f'Result of add_two_ints: {future.result().sum}')
             else:
@@ -24,7 +26,7 @@ def main() -> int:
         if wait_for_service(cli, stop):
             future = cli.call_async(AddTwoInts.Request(a=2, b=3))
             future.add_done_callback(on_answer)
-            spin_until_done(node, future, stop)
+            spin_until(node, lambda: bool(answered), stop)
         node.destroy_node()
     return 0
 

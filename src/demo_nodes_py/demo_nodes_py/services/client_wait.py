@@ -25,12 +25,18 @@ def wait_for_service(client: Client, stop: threading.Event,
 
 def spin_until_done(node: Node, future: Future, stop: threading.Event) -> bool:
     """Spin `node` until `future` is done (True) or a Ctrl-C or shutdown came (False)."""
+    return spin_until(node, future.done, stop)
+
+
+def spin_until(node: Node, done: Callable[[], bool], stop: threading.Event) -> bool:
+    """Spin `node` until `done()` (True) or a Ctrl-C or shutdown came (False). A future's done
+    callbacks run as executor tasks after the future is done: wait for what they do."""
     executor = SingleThreadedExecutor()
     executor.add_node(node)
     try:
-        while not future.done() and not stop.is_set() and rclpy.ok():
+        while not done() and not stop.is_set() and rclpy.ok():
             executor.spin_once(timeout_sec=SIGNAL_CHECK_PERIOD)
     finally:
         executor.remove_node(node)
         executor.shutdown(timeout_sec=1.0)
-    return future.done()
+    return done()
