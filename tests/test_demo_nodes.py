@@ -49,16 +49,18 @@ def test_py_talker_to_cpp_best_effort_listener(module_launch) -> None:
     assert talker.stop() == 0 and listener.stop() == 0
 
 
-@pytest.mark.parametrize('launch_file', ['talker_listener_launch.py',
-                                         'talker_listener_launch.xml',
-                                         'talker_listener_launch.yaml'])
-def test_talker_listener_launch_files(module_launch, launch_file) -> None:
-    demo = module_launch(argv=['ros2', 'launch', 'demo_nodes_cpp', launch_file])
-    demo.wait_for_output(r"\[talker-1\] \[INFO\] \[[\d.]+\] \[talker\]: Publishing: "
-                         r"'Hello World: 1'", timeout=30)
-    demo.wait_for_output(r'\[listener-2\] \[INFO\] \[[\d.]+\] \[listener\]: I heard: '
-                         r'\[Hello World: \d+\]', timeout=20)
-    assert demo.stop() == 0
+def test_talker_listener_launch_files(module_launch) -> None:
+    # The three formats at once: each listener hears talkers (its own among them) on /chatter.
+    demos = [module_launch(argv=['ros2', 'launch', 'demo_nodes_cpp', launch_file])
+             for launch_file in ('talker_listener_launch.py', 'talker_listener_launch.xml',
+                                 'talker_listener_launch.yaml')]
+    for demo in demos:
+        demo.wait_for_output(r"\[talker-1\] \[INFO\] \[[\d.]+\] \[talker\]: Publishing: "
+                             r"'Hello World: 1'", timeout=30)
+        demo.wait_for_output(r'\[listener-2\] \[INFO\] \[[\d.]+\] \[listener\]: I heard: '
+                             r'\[Hello World: \d+\]', timeout=20)
+    for demo in demos:
+        assert demo.stop() == 0
 
 
 def test_add_two_ints_launch_ends_with_the_client(module_launch) -> None:
