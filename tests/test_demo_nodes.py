@@ -44,9 +44,14 @@ def test_cpp_talker_to_py_listener(module_launch) -> None:
 def test_py_talker_to_cpp_best_effort_listener(module_launch) -> None:
     talker = module_launch(argv=['ros2', 'run', 'demo_nodes_py', 'talker'])
     listener = module_launch(argv=['ros2', 'run', 'demo_nodes_cpp', 'listener_best_effort'])
+    serialized = module_launch(argv=['ros2', 'run', 'demo_nodes_py', 'listener_serialized'])
     talker.wait_for_output(LOG + r'\[talker\]: Publishing: "Hello World: 0"$', timeout=20)
     listener.wait_for_output(LOG + r'\[listener\]: I heard: \[Hello World: \d+\]$', timeout=20)
-    assert talker.stop() == 0 and listener.stop() == 0
+    # The CDR bytes as Python prints them: header, length, the string and its NUL.
+    serialized.wait_for_output(LOG + r'\[serialized_subscriber\]: I heard: "b\'\\x00\\x01\\x00'
+                               r'\\x00\\x(?:0f|10)\\x00\\x00\\x00Hello World: \d+(?:\\x00)+\'"$',
+                               timeout=20)
+    assert talker.stop() == 0 and listener.stop() == 0 and serialized.stop() == 0
 
 
 def test_talker_listener_launch_files(module_launch) -> None:
