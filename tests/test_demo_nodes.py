@@ -78,8 +78,9 @@ def test_add_two_ints_launch_ends_with_the_client(module_launch) -> None:
 
 def test_py_server_cpp_async_client(module_launch) -> None:
     server = module_launch(argv=['ros2', 'run', 'demo_nodes_py', 'add_two_ints_server'])
-    for package in ('demo_nodes_cpp', 'demo_nodes_py'):
-        client = module_launch(argv=['ros2', 'run', package, 'add_two_ints_client_async'])
+    clients = [module_launch(argv=['ros2', 'run', package, 'add_two_ints_client_async'])
+               for package in ('demo_nodes_cpp', 'demo_nodes_py')]
+    for client in clients:
         assert client.wait(timeout=30) == 0
         assert re.search(LOG + r'\[add_two_ints_client\]: Result of add_two_ints: 5$',
                          client.output, re.MULTILINE), client.output

@@ -98,22 +98,22 @@ def test_synchronous_client_with_a_spinning_thread(module_launch) -> None:
     server = module_launch(argv=['ros2', 'run', 'demo_nodes_py', 'add_two_ints_server'])
     client = module_launch(argv=[sys.executable, str(DATA / 'sync_async' / 'client_sync.py'),
                                  '2', '3'])
+    stuck = module_launch(argv=[sys.executable,
+                                str(DATA / 'sync_async' / 'client_sync_deadlock.py'), '4', '5'])
+    async_client = module_launch(argv=[sys.executable,
+                                       str(DATA / 'sync_async' / 'client_async.py'), '6', '7'])
     assert client.wait(timeout=30) == 0
     assert re.search(LOG + r'\[minimal_client_sync\]: Result of add_two_ints: for 2 \+ 3 = 5$',
                      client.output, re.MULTILINE), client.output
-    stuck = module_launch(argv=[sys.executable,
-                                str(DATA / 'sync_async' / 'client_sync_deadlock.py'), '4', '5'])
-    trigger = module_launch(argv=['ros2', 'topic', 'pub', '--times', '3', '/trigger',
-                                  'std_msgs/msg/String', "{data: 'go'}"])
-    assert trigger.wait(timeout=30) == 0
-    server.wait_for_output(r'Incoming request\na: 4 b: 5$', timeout=10)  # asked ...
-    time.sleep(1.0)
-    assert 'Result of add_two_ints' not in stuck.output  # ... and never got the answer
-    assert stuck.popen.poll() is None
-    async_client = module_launch(argv=[sys.executable,
-                                       str(DATA / 'sync_async' / 'client_async.py'), '6', '7'])
     assert async_client.wait(timeout=30) == 0
     assert re.search(LOG + r'\[minimal_client_async\]: Result of add_two_ints: 13$',
                      async_client.output, re.MULTILINE), async_client.output
+    trigger = module_launch(argv=['ros2', 'topic', 'pub', '-r', '5', '--times', '5', '/trigger',
+                                  'std_msgs/msg/String', "{data: 'go'}"])
+    assert trigger.wait(timeout=30) == 0
+    server.wait_for_output(r'Incoming request\na: 4 b: 5$', timeout=10)  # asked ...
+    time.sleep(1.0)  # ... and the answer, back within milliseconds, is never taken
+    assert 'Result of add_two_ints' not in stuck.output
+    assert stuck.popen.poll() is None
     for process in (stuck, server):
         process.stop()
