@@ -76,16 +76,24 @@ def test_add_two_ints_launch_ends_with_the_client(module_launch) -> None:
                      re.MULTILINE), demo.output
 
 
-def test_py_server_cpp_async_client(module_launch) -> None:
+def test_servers_and_async_clients(module_launch) -> None:
+    # Two pairs at once: demo_nodes_py's, and demo_nodes_cpp's with a one-shot server (it ends
+    # itself after its first request), remapped to a service of their own.
+    once = ['--ros-args', '-r', 'add_two_ints:=add_two_ints_once']
     server = module_launch(argv=['ros2', 'run', 'demo_nodes_py', 'add_two_ints_server'])
-    clients = [module_launch(argv=['ros2', 'run', package, 'add_two_ints_client_async'])
-               for package in ('demo_nodes_cpp', 'demo_nodes_py')]
+    one_shot = module_launch(argv=['ros2', 'run', 'demo_nodes_cpp', 'add_two_ints_server',
+                                   *once, '-p', 'one_shot:=true'])
+    clients = [module_launch(argv=['ros2', 'run', 'demo_nodes_py', 'add_two_ints_client_async']),
+               module_launch(argv=['ros2', 'run', 'demo_nodes_cpp', 'add_two_ints_client_async',
+                                   *once])]
     for client in clients:
         assert client.wait(timeout=30) == 0
         assert re.search(LOG + r'\[add_two_ints_client\]: Result of add_two_ints: 5$',
                          client.output, re.MULTILINE), client.output
-    server.wait_for_output(LOG + r'\[add_two_ints_server\]: Incoming request\na: 2 b: 3$')
+    for process in (server, one_shot):
+        process.wait_for_output(LOG + r'\[add_two_ints_server\]: Incoming request\na: 2 b: 3$')
     assert server.stop() == 0
+    assert one_shot.wait(timeout=20) == 0
 
 
 def test_qos_talker_and_listener_stop_after_n(module_launch) -> None:
