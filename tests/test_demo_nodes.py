@@ -16,7 +16,8 @@ PY_EXECUTABLES = {
     'async_param_client', 'set_parameters_callback', 'introspection', 'matched_event_detect',
     'use_logger_service'}
 CPP_EXECUTABLES = {
-    'talker', 'listener', 'listener_best_effort', 'add_two_ints_server', 'add_two_ints_client',
+    'talker', 'listener', 'listener_best_effort', 'talker_serialized_message',
+    'listener_serialized_message', 'add_two_ints_server', 'add_two_ints_client',
     'add_two_ints_client_async', 'introspection_service', 'introspection_client',
     'parameter_blackboard', 'list_parameters', 'list_parameters_async',
     'set_and_get_parameters', 'set_and_get_parameters_async', 'parameter_events',
@@ -39,6 +40,18 @@ def test_cpp_talker_to_py_listener(module_launch) -> None:
     listener.wait_for_output(LOG + r'\[listener\]: I heard: \[Hello World: \d+\]$', timeout=20)
     assert talker.stop() == 0 and listener.stop() == 0
     assert 'Traceback' not in talker.output + listener.output
+
+
+def test_serialized_messages(module_launch) -> None:
+    talker = module_launch(argv=['ros2', 'run', 'demo_nodes_cpp', 'talker_serialized_message'])
+    listener = module_launch(argv=['ros2', 'run', 'demo_nodes_cpp',
+                                   'listener_serialized_message'])
+    talker.wait_for_output(r'^ROS message:\nHello World:1\nserialized message:\n00 01 00 00 0e 00 '
+                           r'00 00 48 65 6c 6c 6f 20 57 6f 72 6c 64 3a 31 00 $', timeout=20)
+    listener.wait_for_output(r'^I heard data of length: 2[34]\n00 01 00 00 0e 00 00 00 48 65 6c '
+                             r'6c 6f 20 57 6f 72 6c 64 3a \d\d 00 (?:00 )*\nserialized data after '
+                             r'deserialization: Hello World:\d$', timeout=20)
+    assert talker.stop() == 0 and listener.stop() == 0
 
 
 def test_py_talker_to_cpp_best_effort_listener(module_launch) -> None:

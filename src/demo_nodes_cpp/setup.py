@@ -7,6 +7,8 @@ EXECUTABLES = {
     'talker': 'topics.talker',
     'listener': 'topics.listener',
     'listener_best_effort': 'topics.listener_best_effort',
+    'talker_serialized_message': 'topics.talker_serialized_message',
+    'listener_serialized_message': 'topics.listener_serialized_message',
     'add_two_ints_server': 'services.add_two_ints_server',
     'add_two_ints_client': 'services.add_two_ints_client',
     'add_two_ints_client_async': 'services.add_two_ints_client_async',
