@@ -152,8 +152,9 @@ def test_parameter_demos_print_upstreams_lines(module_launch) -> None:
         ['foo'], ['bar'], ['baz'], ['foobar'], ['foo'], ['bar']]
 
 
-def test_even_parameters_node_refuses_odd_values(module_launch, module_ros_env) -> None:
+def test_even_parameters_node_and_parameter_event_handler(module_launch, module_ros_env) -> None:
     node = module_launch(argv=['ros2', 'run', 'demo_nodes_cpp', 'even_parameters_node'])
+    handler = module_launch(argv=['ros2', 'run', 'demo_nodes_cpp', 'parameter_event_handler'])
     node.wait_for_output(r"Try running 'ros2 param set /even_parameters_node myint 2' to$",
                          timeout=20)
     odd = ros2(module_ros_env, 'param', 'set', '/even_parameters_node', 'myint', '3')
@@ -164,6 +165,20 @@ def test_even_parameters_node_refuses_odd_values(module_launch, module_ros_env) 
     assert even.stdout == 'Set parameter successful\n'
     node.wait_for_output(r"parameter 'myint' has changed and is now: 2$")
     assert node.stop() == 0
+    # parameter_event_handler, as its own instructions say.
+    handler.wait_for_output(r'^\t\$ ros2 param set /a_namespace/a_remote_node a_string_param '
+                            r'"string value to set"$', timeout=20)
+    assert ros2(module_ros_env, 'param', 'set', 'this_node', 'an_int_param',
+                '21').stdout == 'Set parameter successful\n'
+    handler.wait_for_output(LOG + r'\[this_node\]: cb1: Received an update to parameter '
+                            r'"an_int_param" of type integer: "21"$')
+    handler.wait_for_output(LOG + r'\[this_node\]: cb3: Received an update to parameter '
+                            r'"an_int_param" of type: integer: "21"$')
+    assert ros2(module_ros_env, 'param', 'set', '/a_namespace/a_remote_node', 'a_string_param',
+                'hi').stdout == 'Set parameter successful\n'
+    handler.wait_for_output(LOG + r'\[this_node\]: cb2: Received an update to parameter '
+                            r'"a_string_param" of type: string: "hi"$')
+    assert handler.stop() == 0
 
 
 def test_cpp_set_parameters_callback(module_launch, module_ros_env) -> None:

@@ -6,6 +6,7 @@ import re
 import sys
 
 from node_runtime.spinning import ros_session, spin_until_stopped
+from rcl_interfaces.msg import Parameter as ParameterMsg
 from rcl_interfaces.msg import ParameterEvent
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
@@ -42,11 +43,14 @@ def main() -> int:
         remote.declare_parameter(REMOTE_PARAM, 'default_string_value')
         log = node.get_logger()
 
-        def cb1(parameter: Parameter) -> None:
+        # rclpy's handler passes rcl_interfaces/msg/Parameter messages; rclcpp passes Parameters.
+        def cb1(message: ParameterMsg) -> None:
+            parameter = Parameter.from_parameter_msg(message)
             log.info(f'cb1: Received an update to parameter "{parameter.name}" of type '
                      f'{type_name(parameter)}: "{parameter.value}"')
 
-        def cb2(parameter: Parameter) -> None:
+        def cb2(message: ParameterMsg) -> None:
+            parameter = Parameter.from_parameter_msg(message)
             log.info(f'cb2: Received an update to parameter "{parameter.name}" of type: '
                      f'{type_name(parameter)}: "{parameter.value}"')
 
@@ -57,7 +61,7 @@ def main() -> int:
                 event, parameter_name=REMOTE_PARAM, node_name=REMOTE_FQN)
             shown = ([changed] if changed is not None else []) + list(
                 ParameterEventHandler.get_parameters_from_event(event))
-            for parameter in shown:
+            for parameter in map(Parameter.from_parameter_msg, shown):
                 log.info(f'cb3: Received an update to parameter "{parameter.name}" of type: '
                          f'{type_name(parameter)}: "{value_to_string(parameter)}"')
 
