@@ -181,8 +181,9 @@ def test_even_parameters_node_and_parameter_event_handler(module_launch, module_
     assert handler.stop() == 0
 
 
-def test_cpp_set_parameters_callback(module_launch, module_ros_env) -> None:
+def test_set_parameters_callbacks(module_launch, module_ros_env) -> None:
     node = module_launch(argv=['ros2', 'run', 'demo_nodes_cpp', 'set_parameters_callback'])
+    python_node = module_launch(argv=['ros2', 'run', 'demo_nodes_py', 'set_parameters_callback'])
     node.wait_for_output(r"The 2nd command will set 'param1' to 3\.0 and 'param2' to 4\.0\.$",
                          timeout=20)
     refused = ros2(module_ros_env, 'param', 'set', 'set_param_callback_node', 'param1', '10.0')
@@ -194,6 +195,12 @@ def test_cpp_set_parameters_callback(module_launch, module_ros_env) -> None:
     assert ros2(module_ros_env, 'param', 'get', 'set_param_callback_node',
                 'param2').stdout == 'Double value is: 4.0\n'
     assert node.stop() == 0
+    # demo_nodes_py's: no limits, and setting param1 sets param2 as well.
+    assert ros2(module_ros_env, 'param', 'set', 'set_parameters_callback', 'param1',
+                '10.0').stdout == 'Set parameter successful\n'
+    assert ros2(module_ros_env, 'param', 'get', 'set_parameters_callback',
+                'param2').stdout == 'Double value is: 4.0\n'
+    assert python_node.stop() == 0
 
 
 def test_async_param_client_on_the_blackboard(module_launch) -> None:
