@@ -86,7 +86,11 @@ def test_node_with_logger_service(ros_env, launch, tmp_path) -> None:
     assert node.stop() == 0
 
 
-def test_log_level_on_the_command_line(launch) -> None:
+def test_log_level_on_the_command_line(launch, ros_env, tmp_path) -> None:
+    # The page's last step: the log file's name prefix, in ROS_LOG_DIR.
+    talker = launch(argv=['ros2', 'run', 'demo_nodes_cpp', 'talker', '--ros-args',
+                          '--log-file-name', 'filename'],
+                    env={**ros_env, 'ROS_LOG_DIR': str(tmp_path)})
     everything = launch(argv=[*DEMO, '--ros-args', '--log-level', 'debug'])
     everything.wait_for_output(rf'^\[DEBUG\] {TIME} \[rcl\]: ', timeout=20)
     everything.wait_for_output(rf'^\[DEBUG\] {TIME} \[logger_usage_demo\]: Count is even')
@@ -96,6 +100,11 @@ def test_log_level_on_the_command_line(launch) -> None:
     assert 'Setting severity threshold' not in one.output  # debug before the 5.5 s timer
     assert '[rcl]' not in one.output
     assert one.stop() == 0
+    talker.wait_for_output(r"Publishing: 'Hello World: 1'")
+    assert talker.stop() == 0
+    files = list(tmp_path.glob('filename_*.log'))
+    assert len(files) == 1, list(tmp_path.iterdir())
+    assert "[talker]: Publishing: 'Hello World: 1'" in files[0].read_text()
 
 
 def test_bad_log_level_is_refused(launch) -> None:
