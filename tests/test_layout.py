@@ -34,7 +34,7 @@ ALLOWED_IN_CODE = {
     'my_robot_controller': {'node_runtime', 'turtlesim', 'example_interfaces'},
 }
 # A package's internals: importable, but by no other package (the simulator's code).
-PRIVATE_MODULES = {'turtlesim_py': 'turtlesim'}
+PRIVATE_MODULES = {'turtlesim_py': 'turtlesim', 'logging_demo_py': 'logging_demo'}
 
 
 @dataclass

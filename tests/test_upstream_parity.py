@@ -19,6 +19,8 @@ from upstream's sources (facts only):
 - ros2/demos demo_nodes_cpp parameter_blackboard.cpp: an rclcpp node that allows undeclared
   parameters, declares those it is given, and logs how many it serves (list_parameters,
   recursive) once constructed.
+- ros2/demos demo_nodes_cpp talker.cpp / listener.cpp: rclcpp nodes publishing / subscribing
+  /chatter (std_msgs/msg/String), no parameters of their own.
 - ros2/demos demo_nodes_py add_two_ints_server/add_two_ints_client (rclpy; the course's
   my_robot_controller nodes carry these node names): /add_two_ints server and client, no
   parameters of their own.
@@ -112,6 +114,9 @@ PARAMETER_BLACKBOARD = Upstream('parameter_blackboard')
 ADD_TWO_INTS = ('/add_two_ints', 'example_interfaces/srv/AddTwoInts')
 ADD_SERVER = Upstream('add_two_ints_server', services=[ADD_TWO_INTS], rclcpp=False)
 ADD_CLIENT = Upstream('add_two_ints_client', clients=[ADD_TWO_INTS], rclcpp=False)
+CHATTER = ('/chatter', 'std_msgs/msg/String')
+TALKER = Upstream('talker', publishers=[CHATTER])
+LISTENER = Upstream('listener', subscribers=[CHATTER])
 
 
 def wait_until_discovered(env: dict[str, str], node: Upstream) -> None:
@@ -185,6 +190,15 @@ def test_parameter_blackboard_is_demo_nodes_cpps(module_ros_env, module_launch):
                                r"blackboard node named '/parameter_blackboard' ready, and serving "
                                f"'{len(PARAMETER_BLACKBOARD.parameters)}' parameters already!$")
     assert_like_upstream(module_ros_env, PARAMETER_BLACKBOARD)
+
+
+def test_talker_and_listener_are_demo_nodes_cpps(module_ros_env, module_launch):
+    talker = module_launch('demo_nodes_cpp', 'talker')
+    listener = module_launch('demo_nodes_cpp', 'listener')
+    listener.wait_for_output('I heard', timeout=20)
+    assert_like_upstream(module_ros_env, TALKER)
+    assert_like_upstream(module_ros_env, LISTENER)
+    assert talker.stop() == 0 and listener.stop() == 0
 
 
 def test_add_two_ints_server_is_demo_nodes_pys(module_ros_env, module_launch):

@@ -20,6 +20,13 @@ class ParameterBlackboard(RclcppParameters, Node):
             f"Parameter blackboard node named '{self.get_fully_qualified_name()}' ready, and "
             f"serving '{len(served)}' parameters already!")
 
+    def list_parameters(self, prefixes, depth):
+        # rclcpp keeps parameters in a map, so its listing is in name order (async_param_client
+        # prints it); rclpy lists them in the order they were set.
+        result = super().list_parameters(prefixes, depth)
+        result.names, result.prefixes = sorted(result.names), sorted(result.prefixes)
+        return result
+
 
 def main() -> int:
     with ros_session() as stop:

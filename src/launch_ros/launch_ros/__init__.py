@@ -6,7 +6,6 @@ from launch._missing import module_getattr
 
 from launch_ros import (  # noqa: F401
     actions,
-    actions,
     descriptions,
     event_handlers,
     events,

@@ -17,6 +17,7 @@ from contextlib import contextmanager
 import rclpy
 from node_runtime.discovery import announce_often
 from rclpy.executors import Executor, ExternalShutdownException, SingleThreadedExecutor
+from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
 
@@ -28,7 +29,12 @@ def ros_session(args: list[str] | None = None) -> Iterator[threading.Event]:
     """rclpy.init with our own SIGINT/SIGTERM handlers; yields the event they set."""
     stop = threading.Event()
     announce_often()  # met within 0.5 s by processes that missed its first announcements
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    try:
+        rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    except _rclpy.RCLError as error:
+        # Bad --ros-args (an unknown log level, a malformed remap): rcl's reason in one line,
+        # without its source locations, instead of a traceback; exit code 1.
+        raise SystemExit(str(error).split(', at /')[0]) from None
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, lambda _signum, _frame: stop.set())
     try:

@@ -18,10 +18,19 @@ from launch_ros.actions.set_ros_log_dir import SetROSLogDir
 from launch_ros.actions.set_use_sim_time import SetUseSimTime
 
 __all__ = [
-    'ComposableNodeContainer', 'LoadComposableNodes', 'Node', 'PushROSNamespace',
-    'PushRosNamespace', 'ROSTimer', 'SetParameter', 'SetParametersFromFile', 'SetROSLogDir',
-    'SetRemap', 'SetUseSimTime',
-    'LifecycleNode', 'LifecycleTransition',
+    'ComposableNodeContainer',
+    'LifecycleNode',
+    'LifecycleTransition',
+    'LoadComposableNodes',
+    'Node',
+    'PushROSNamespace',
+    'PushRosNamespace',
+    'ROSTimer',
+    'SetParameter',
+    'SetParametersFromFile',
+    'SetROSLogDir',
+    'SetRemap',
+    'SetUseSimTime',
 ]
 
 __getattr__ = module_getattr(__name__, os.path.dirname(__file__))

@@ -1,0 +1,44 @@
+import sys
+from threading import Thread
+
+from example_interfaces.srv import AddTwoInts
+import rclpy
+from rclpy.node import Node
+
+
+class MinimalClientSync(Node):
+
+    def __init__(self):
+        super().__init__('minimal_client_sync')
+        self.cli = self.create_client(AddTwoInts, 'add_two_ints')
+        while not self.cli.wait_for_service(timeout_sec=1.0):
+            self.get_logger().info('service not available, waiting again...')
+        self.req = AddTwoInts.Request()
+
+    def send_request(self):
+        self.req.a = int(sys.argv[1])
+        self.req.b = int(sys.argv[2])
+        return self.cli.call(self.req)
+        # This only works because rclpy.spin() is called in a separate thread below.
+        # Another configuration, like spinning later in main() or calling this method from a timer callback, would result in a deadlock.
+
+
+def main():
+    rclpy.init()
+
+    minimal_client = MinimalClientSync()
+
+    spin_thread = Thread(target=rclpy.spin, args=(minimal_client,))
+    spin_thread.start()
+
+    response = minimal_client.send_request()
+    minimal_client.get_logger().info(
+        'Result of add_two_ints: for %d + %d = %d' %
+        (minimal_client.req.a, minimal_client.req.b, response.sum))
+
+    minimal_client.destroy_node()
+    rclpy.shutdown()
+
+
+if __name__ == '__main__':
+    main()
