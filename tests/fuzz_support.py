@@ -7,6 +7,7 @@ an ERROR line naming the field when refused, the process still running.
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 import re
@@ -74,12 +75,19 @@ def unknown_interface(name: str) -> bool:
     parts = name.split('/')
     if len(parts) == 2:
         parts = [parts[0], 'msg', parts[1]]
-    if len(parts) != 3 or not all(part.isidentifier() for part in parts):
+    if len(parts) != 3 or parts[0] not in _interface_packages():
         return True
     try:
         return not hasattr(importlib.import_module(f'{parts[0]}.{parts[1]}'), parts[2])
     except ImportError:
         return True
+
+
+@functools.cache
+def _interface_packages() -> frozenset[str]:
+    # From the ament index: importing each generated name would search all of sys.path.
+    from ament_index_python import get_resources
+    return frozenset(get_resources('rosidl_interfaces'))
 
 
 def float32(value: float) -> float:
