@@ -7,10 +7,8 @@ later ones read the live cache. One-shot verbs run here for the CLI, in the same
 request.
 
 A CLI whose environment is not the daemon's (an overlay sourced after the daemon started)
-is pointed at a worker: the same program with `--worker`, started by the daemon with that
-CLI's interpreter and variables, serving verbs for that environment on a socket of its own
-(protocol.worker_path). Workers end with their daemon (their stdin closes) or when their
-code is outdated; the next CLI of that environment then starts a fresh one.
+is pointed at the daemon's worker for that environment: this program with `--worker`
+(workers.py).
 """
 
 from __future__ import annotations
@@ -19,7 +17,6 @@ import fcntl
 import os
 import signal
 import socketserver
-import subprocess
 import sys
 import threading
 import time
@@ -27,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from ros2cli_lite.daemon import protocol, proxy
+from ros2cli_lite.daemon.workers import Workers, exit_with_daemon
 
 IDLE_EXIT = 2 * 60 * 60.0      # as ros2cli's daemon: two hours without a request
 READY_BOUND = 15.0             # a request waits at most this long for the first settling
@@ -40,8 +38,6 @@ HEALTH_PERIOD = 2.0            # how often the participant checks that it still 
 # announces.
 FIRST_LISTEN = 3.3
 SETTLE_WHEN_MET = 0.1  # the graph unchanged this long: the last endpoints have trickled in
-MAX_WORKERS = 8        # environments served at once; a CLI beyond them runs its verb itself
-WORKER_STOP_BOUND = 5.0
 
 
 class GraphCache:
@@ -176,8 +172,7 @@ class DaemonServer(socketserver.ThreadingUnixStreamServer):
         self.path = path
         self.is_worker = is_worker
         self.environment = protocol.environment()
-        self._workers: dict[Path, subprocess.Popen[bytes]] = {}
-        self._workers_lock = threading.Lock()
+        self.workers = Workers(path)
         old_umask = os.umask(0o177)  # the socket is created 0600: only its user may connect
         try:
             super().__init__(str(path), _Handler)
@@ -202,57 +197,13 @@ class DaemonServer(socketserver.ThreadingUnixStreamServer):
             return {'ok': True, 'publishers': publishers, 'subscribers': subscribers}
         return {'ok': False, 'error': f'unknown request {op!r}'}
 
-    def worker_for(self, request: dict[str, Any]) -> Path | None:
-        """The socket of the worker for the CLI's environment, started now if none runs (it
-        serves from the next request on, once it has met the graph)."""
-        executable, env = request.get('executable'), request.get('env')
-        values = request.get('environment')
-        if self.is_worker or not isinstance(executable, str) or not isinstance(env, dict) \
-                or not isinstance(values, dict):
-            return None
-        path = protocol.worker_path(self.path, {str(k): str(v) for k, v in values.items()})
-        with self._workers_lock:
-            for known, process in list(self._workers.items()):
-                if process.poll() is not None:  # stale or idle: it left
-                    del self._workers[known]
-            if path in self._workers:
-                return path
-            if len(self._workers) >= MAX_WORKERS:
-                return None
-            with open(path.with_suffix('.log'), 'wb') as log:
-                self._workers[path] = subprocess.Popen(
-                    [executable, '-m', 'ros2cli_lite.daemon.server', '--worker'], cwd='/',
-                    env={str(k): str(v) for k, v in env.items()}, stdin=subprocess.PIPE,
-                    stdout=log, stderr=subprocess.STDOUT, start_new_session=True,
-                    close_fds=True)
-            print(f'started worker {self._workers[path].pid} for {path.name}',
-                  file=sys.stderr, flush=True)
-        return path
-
-    def stop_workers(self) -> None:
-        """Close the workers' stdin (they stop on that) and wait for them, bounded."""
-        with self._workers_lock:
-            workers, self._workers = list(self._workers.values()), {}
-        for process in workers:
-            try:
-                process.stdin.close()
-            except OSError:
-                pass
-        deadline = time.monotonic() + WORKER_STOP_BOUND
-        for process in workers:
-            try:
-                process.wait(timeout=max(0.1, deadline - time.monotonic()))
-            except subprocess.TimeoutExpired:
-                process.kill()
-                process.wait()
-
     def run_verb(self, request: dict[str, Any], connection: Any, output: Any) -> None:
         """Run a one-shot verb for the CLI (proxy.py), streaming its output; or decline with
         one line (naming the worker of the CLI's environment when there is one to ask), and
         the CLI runs it itself."""
         self.last_request = time.monotonic()
         if request.get('environment') != self.environment:
-            worker = self.worker_for(request)
+            worker = None if self.is_worker else self.workers.for_cli(request)
             output.write(protocol.encode({'declined': 'environment',
                                           'worker': str(worker) if worker else None}))
             return
@@ -298,16 +249,6 @@ def _exit_when_idle(server: DaemonServer, stopping: threading.Event) -> None:
             return
 
 
-def _exit_with_parent(server: DaemonServer) -> None:
-    """A worker: its daemon holds our stdin; end of file means the daemon has gone."""
-    try:
-        while sys.stdin.buffer.read(1 << 12):
-            pass
-    except OSError:
-        pass
-    server.shutdown()
-
-
 def main(argv: list[str] | None = None) -> int:
     is_worker = '--worker' in (sys.argv[1:] if argv is None else argv)
     path = protocol.socket_path()
@@ -342,7 +283,7 @@ def main(argv: list[str] | None = None) -> int:
     threading.Thread(target=cache.watch, args=(stopping,), daemon=True).start()
     threading.Thread(target=_exit_when_idle, args=(server, stopping), daemon=True).start()
     if is_worker:
-        threading.Thread(target=_exit_with_parent, args=(server,), daemon=True).start()
+        threading.Thread(target=exit_with_daemon, args=(server.shutdown,), daemon=True).start()
     print(f'{"worker" if is_worker else "daemon"} {os.getpid()} serving {path} '
           f'({protocol.settings()})', file=sys.stderr, flush=True)
     try:
@@ -354,7 +295,7 @@ def main(argv: list[str] | None = None) -> int:
         except OSError:
             pass
         server.server_close()
-        server.stop_workers()
+        server.workers.stop()
         cache.stop()
     return 0
 
