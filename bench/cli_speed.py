@@ -5,6 +5,12 @@ types (node/topic/service/param/action/interface verbs, plus the first `ros2 nod
 `ros2 daemon stop`, daemon start included) runs once as a warm-up and then RUNS times; the
 median wall time is reported. The daemon already runs where the verb uses it.
 
+Then the overlay case: the one-shot verbs (those the daemon runs for the CLI) in a shell
+that has sourced an overlay after the daemon started, i.e. whose AMENT_PREFIX_PATH and
+PYTHONPATH start with another prefix (a scratch overlay with one package marker). Its first
+call is reported on its own row (our daemon then starts the worker for that environment);
+then, once the worker answers, each verb's median as above.
+
 `--reference-ros2 PATH` names another `ros2` to run the same commands with, on the same
 domain (e.g. upstream ros2cli on the same rclpy): either its `ros2` executable or the prefix
 it is installed in. When the executable lives in `<prefix>/bin`, `<prefix>/bin`, its
@@ -22,10 +28,12 @@ from __future__ import annotations
 import argparse
 import os
 import re
+import shutil
 import signal
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -46,6 +54,8 @@ SEND_GOAL = ('ros2 action send_goal /turtle1/rotate_absolute turtlesim/action/Ro
 SEND_GOAL_SHORT = ('ros2 action send_goal /turtle1/rotate_absolute '
                    'turtlesim/action/RotateAbsolute "{theta: 1.1}" (turns 0.1 rad)')
 
+PUB_ONCE = ('ros2 topic pub --once /turtle1/cmd_vel geometry_msgs/msg/Twist '
+            '"{linear: {x: 0.1}}"')
 # (shown as, argv after `ros2`, output varies from call to call)
 COMMANDS: list[tuple[str, list[str], bool]] = [
     ('ros2 node list', ['node', 'list'], False),
@@ -61,9 +71,8 @@ COMMANDS: list[tuple[str, list[str], bool]] = [
     ('ros2 param set /turtlesim background_r 100',
      ['param', 'set', '/turtlesim', 'background_r', '100'], False),
     ('ros2 topic echo --once /turtle1/pose', ['topic', 'echo', '--once', '/turtle1/pose'], True),
-    ('ros2 topic pub --once /turtle1/cmd_vel geometry_msgs/msg/Twist "{linear: {x: 0.1}}"',
-     ['topic', 'pub', '--once', '/turtle1/cmd_vel', 'geometry_msgs/msg/Twist',
-      '{linear: {x: 0.1}}'], True),
+    (PUB_ONCE, ['topic', 'pub', '--once', '/turtle1/cmd_vel', 'geometry_msgs/msg/Twist',
+                '{linear: {x: 0.1}}'], True),
     ('ros2 service call /clear std_srvs/srv/Empty',
      ['service', 'call', '/clear', 'std_srvs/srv/Empty'], True),
     ('ros2 action list', ['action', 'list'], False),
@@ -82,6 +91,14 @@ COMMANDS: list[tuple[str, list[str], bool]] = [
     # of that name); the started node's own start-up is the same program for both.
     (RUN_OWN_PART, ['run', 'turtlesim', 'no_such_executable'], False),
 ]
+# The verbs the daemon runs for the CLI (one exchange with the graph each), in the overlay.
+ONE_SHOT = ('ros2 param list /turtlesim', 'ros2 param get /turtlesim background_r',
+            'ros2 param set /turtlesim background_r 100', 'ros2 topic echo --once /turtle1/pose',
+            PUB_ONCE, 'ros2 service call /clear std_srvs/srv/Empty', SEND_GOAL_SHORT)
+OVERLAY = ' [overlay sourced after the daemon started]'
+OVERLAY_FIRST = ('ros2 param get /turtlesim background_r, first call after sourcing the '
+                 'overlay (worker start)')
+WORKER_BOUND_S = 30.0
 THETAS = {SEND_GOAL: ('{theta: 1.0}', '{theta: -1.0}'),
           SEND_GOAL_SHORT: ('{theta: 1.0}', '{theta: 1.1}')}
 # Started, then timed until a probe that already knows the graph discovers every node it
@@ -107,17 +124,21 @@ class Cli:
     failures: dict[str, list[str]] = field(default_factory=dict)
     _verbs: set[str] | None = None
 
-    def run(self, args: list[str]) -> tuple[float, subprocess.CompletedProcess | None]:
+    overlay_env: dict[str, str] | None = None
+
+    def run(self, args: list[str], overlay: bool = False
+            ) -> tuple[float, subprocess.CompletedProcess | None]:
         start = time.monotonic()
+        env = self.overlay_env if overlay else self.env
         try:
-            result = subprocess.run([self.argv0, *args], env=self.env, capture_output=True,
+            result = subprocess.run([self.argv0, *args], env=env, capture_output=True,
                                     text=True, timeout=TIMEOUT_S, stdin=subprocess.DEVNULL)
         except subprocess.TimeoutExpired:
             return time.monotonic() - start, None
         return time.monotonic() - start, result
 
-    def measure(self, name: str, args: list[str], keep: bool) -> None:
-        elapsed, result = self.run(args)
+    def measure(self, name: str, args: list[str], keep: bool, overlay: bool = False) -> None:
+        elapsed, result = self.run(args, overlay)
         if not keep:
             return
         self.samples.setdefault(name, []).append(elapsed)
@@ -211,6 +232,65 @@ def measure_start(cli: Cli, probe: TestNode, name: str, args: list[str], nodes: 
             f'exit {process.returncode}: {errors.decode(errors="replace").strip()[-300:]}')
 
 
+def make_overlay(directory: Path) -> Path:
+    """A scratch overlay prefix as colcon installs one: a package marker and a site dir."""
+    prefix = directory / 'install'
+    (prefix / 'share' / 'ament_index' / 'resource_index' / 'packages').mkdir(parents=True)
+    (prefix / 'share' / 'ament_index' / 'resource_index' / 'packages' / 'bench_overlay').touch()
+    version = f'python{sys.version_info[0]}.{sys.version_info[1]}'
+    (prefix / 'lib' / version / 'site-packages').mkdir(parents=True)
+    return prefix
+
+
+def sourced(env: dict[str, str], prefix: Path) -> dict[str, str]:
+    """`env` after `source <prefix>/setup.bash`: the overlay first on both paths."""
+    site = next((prefix / 'lib').glob('python*/site-packages'))
+    env = dict(env)
+    for var, value in (('AMENT_PREFIX_PATH', prefix), ('PYTHONPATH', site)):
+        env[var] = os.pathsep.join([str(value), *filter(None, [env.get(var, '')])])
+    return env
+
+
+def _wait_worker(cli: Cli) -> None:
+    """Until our daemon's worker for the overlay's environment answers (started by the first
+    overlay call); not for the reference, which has none."""
+    if cli.label != 'ours':
+        return
+    from ros2cli_lite.daemon import client, protocol
+    assert cli.overlay_env is not None
+    values = {name: cli.overlay_env.get(name, '') for name in protocol.ENVIRONMENT}
+    path = protocol.worker_path(protocol.socket_path(cli.overlay_env), values)
+    deadline = time.monotonic() + WORKER_BOUND_S
+    while not (path.exists() and client.is_running(path)):
+        if time.monotonic() > deadline:
+            cli.failures.setdefault(OVERLAY_FIRST, []).append(
+                f'no worker answered at {path} within {WORKER_BOUND_S:.0f} s')
+            return
+        time.sleep(0.1)
+
+
+def measure_overlay(clis: list[Cli], runs: int, counter: list[int]) -> None:
+    """The one-shot verbs in a shell that sourced an overlay after the daemon started."""
+    directory = Path(tempfile.mkdtemp(prefix='cli_speed_overlay_'))
+    try:
+        prefix = make_overlay(directory)
+        for cli in clis:
+            cli.overlay_env = sourced(cli.env, prefix)
+            cli.measure(OVERLAY_FIRST, ['param', 'get', '/turtlesim', 'background_r'], True,
+                        overlay=True)
+        for cli in clis:
+            _wait_worker(cli)
+        for name, args, _ in COMMANDS:
+            if name not in ONE_SHOT:
+                continue
+            for run in range(runs + 1):
+                for cli in clis:
+                    cli.measure(name + OVERLAY, _argv(name, args, counter), keep=run > 0,
+                                overlay=True)
+    finally:
+        shutil.rmtree(directory, ignore_errors=True)
+
+
 def _wait_ready(cli: Cli) -> None:
     """Start the daemon and wait until it lists turtlesim, its services and its action."""
     cli.run(['daemon', 'start'])
@@ -271,6 +351,7 @@ def measure(s: Session, reference: str | None, runs: int = RUNS) -> list[Cli]:
             for run in range(runs + 1):  # run 0 is the warm-up
                 for cli in clis:
                     cli.measure(name, _argv(name, args, counter), keep=run > 0)
+        measure_overlay(clis, runs, counter)
         probe = s.probe('bench_cli_speed_probe')
         try:
             for name, args, nodes in STARTS:
@@ -295,11 +376,17 @@ def _fmt(value: float | None) -> str:
     return f'{value:.0f}' if value is not None else 'n/a'
 
 
+def row_names() -> list[str]:
+    return ([name for name, _, _ in COMMANDS] + [OVERLAY_FIRST]
+            + [name + OVERLAY for name, _, _ in COMMANDS if name in ONE_SHOT]
+            + [name for name, _, _ in STARTS] + [COLD])
+
+
 def table_lines(clis: list[Cli]) -> list[tuple[str, str, str, str, str, str]]:
     ours = clis[0]
     reference = clis[1] if len(clis) > 1 else None
     lines = []
-    for name in [name for name, _, _ in COMMANDS] + [name for name, _, _ in STARTS] + [COLD]:
+    for name in row_names():
         mine = ours.median_ms(name)
         theirs = reference.median_ms(name) if reference else None
         failed = name in ours.failures
@@ -313,7 +400,9 @@ def table_lines(clis: list[Cli]) -> list[tuple[str, str, str, str, str, str]]:
         else:
             theirs_text = 'reference: not given' if reference is None else 'not in the reference'
             ratio_text = ''
-        judged = theirs is not None or name == COLD
+        if name == OVERLAY_FIRST:  # the CLI runs it while the worker starts: shown, not judged
+            target = 'not judged'
+        judged = (theirs is not None or name == COLD) and name != OVERLAY_FIRST
         state = 'FAILED' if failed else verdict(met) if judged else ''
         if reference is not None and name in reference.failures:
             state += ' (reference failed)'
@@ -360,7 +449,7 @@ def main() -> None:
     print(f'load average: before {load_before[0]:.2f}, after {load_after[0]:.2f} '
           f'(1 min), {os.cpu_count()} cores')
     print('samples (ms), in order:')
-    for name in [name for name, _, _ in COMMANDS] + [COLD]:
+    for name in row_names():
         spread = '; '.join(f'{cli.label} ' + ' '.join(f'{v * 1000:.0f}' for v in
                                                       cli.samples.get(name, []))
                            for cli in clis)

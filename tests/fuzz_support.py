@@ -7,6 +7,7 @@ an ERROR line naming the field when refused, the process still running.
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 import re
@@ -42,6 +43,13 @@ NAME_EDGES = ['', 'a', '_', '_a', 'a_', 'a__b', '1a', 'a/b', 'a//b', '/a', 'a/',
 # Any unicode but NUL, which a ROS string cannot carry (the client library refuses it).
 # (Lone surrogates are left out too: they have no UTF-8 form, the client refuses them.)
 text = st.text(st.characters(codec='utf-8', exclude_characters='\x00'), max_size=1000)
+
+
+def short(size: int) -> st.SearchStrategy[str]:
+    """Like `text`, at most `size` characters (cheaper to generate than cutting `text`)."""
+    return st.text(st.characters(codec='utf-8', exclude_characters='\x00'), max_size=size)
+
+
 # Valid names twice as likely as arbitrary text, so the accepting paths get their share.
 valid_names = st.from_regex(r'[A-Za-z][A-Za-z0-9]{0,30}(/[A-Za-z][A-Za-z0-9]{0,20}){0,3}',
                             fullmatch=True)
@@ -58,6 +66,28 @@ floats32 = st.one_of(st.sampled_from([f for f in FLOAT_EDGES if not math.isfinit
                      st.floats(width=32, allow_nan=True, allow_infinity=True))
 uint8 = st.integers(0, 255)
 int64 = st.integers(-2**63, 2**63 - 1)
+
+
+def unknown_interface(name: str) -> bool:
+    """Whether `name` ('pkg/msg/Type', 'pkg/Type', ...) names no interface importable here: for
+    generated type names that must be refused."""
+    import importlib
+    parts = name.split('/')
+    if len(parts) == 2:
+        parts = [parts[0], 'msg', parts[1]]
+    if len(parts) != 3 or parts[0] not in _interface_packages():
+        return True
+    try:
+        return not hasattr(importlib.import_module(f'{parts[0]}.{parts[1]}'), parts[2])
+    except ImportError:
+        return True
+
+
+@functools.cache
+def _interface_packages() -> frozenset[str]:
+    # From the ament index: importing each generated name would search all of sys.path.
+    from ament_index_python import get_resources
+    return frozenset(get_resources('rosidl_interfaces'))
 
 
 def float32(value: float) -> float:

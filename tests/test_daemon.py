@@ -204,3 +204,39 @@ def test_one_shot_verbs_run_in_the_daemon_and_stop_with_their_cli(ros_env, node,
     wait_for(lambda: verb_node not in ros2(ros_env, 'node', 'list', '-a').stdout, 10,
              'the verb node gone once its CLI was killed')
     assert daemon_pid(ros_env) is not None  # the daemon itself goes on
+
+
+def test_an_overlay_sourced_after_the_daemon_is_served_by_a_worker(ros_env, node, tmp_path):
+    """A shell that sources an overlay after the daemon started: its first one-shot verb runs
+    in the CLI while the daemon starts a worker for that environment; the next ones run in
+    the worker (the CLI process never loads rclpy); `ros2 daemon stop` ends the worker too."""
+    says(ros_env, 'daemon', 'start')
+    assert ros2(ros_env, 'node', 'list').stdout == '/cli_test_node\n'  # the daemon is ready
+    prefix = tmp_path / 'install'  # an overlay as colcon installs one: a marker, a site dir
+    (prefix / 'share' / 'ament_index' / 'resource_index' / 'packages').mkdir(parents=True)
+    (prefix / 'share' / 'ament_index' / 'resource_index' / 'packages' / 'overlay').touch()
+    site = prefix / 'lib' / f'python{sys.version_info[0]}.{sys.version_info[1]}' / 'site-packages'
+    site.mkdir(parents=True)
+    sourced = dict(ros_env, AMENT_PREFIX_PATH=f'{prefix}{os.pathsep}{ros_env["AMENT_PREFIX_PATH"]}',
+                   PYTHONPATH=os.pathsep.join(filter(None, [str(site),
+                                                            ros_env.get('PYTHONPATH')])))
+    code = ('import sys\nfrom ros2cli_lite.cli import main\n'
+            'main(["param", "get", "/cli_test_node", "speed"])\n'
+            'print("rclpy" in sys.modules)')
+
+    def param_get() -> str:
+        result = subprocess.run([sys.executable, '-c', code], env=sourced, capture_output=True,
+                                text=True, timeout=60)
+        assert result.stdout.startswith('Integer value is: 69\n'), result
+        return result.stdout
+    assert param_get().endswith('True\n')  # in the CLI: the worker is starting
+    values = {name: sourced.get(name, '') for name in protocol.ENVIRONMENT}
+    worker = protocol.worker_path(protocol.socket_path(ros_env), values)
+    wait_for(lambda: worker.exists() and client.is_running(worker), 30, 'the worker')
+    wait_for(lambda: param_get().endswith('False\n'), 30, 'the verb to run in the worker')
+    assert param_get() == 'Integer value is: 69\nFalse\n'
+    worker_pid = client._exchange(worker, {'op': 'hello'}, 5.0)['pid']
+    assert worker_pid != daemon_pid(ros_env)
+    assert says(ros_env, 'daemon', 'stop') == 'The daemon has been stopped\n'
+    assert not os.path.exists(f'/proc/{worker_pid}'), 'the worker outlived its daemon'
+    assert param_get().endswith('True\n')  # no daemon: the CLI runs it

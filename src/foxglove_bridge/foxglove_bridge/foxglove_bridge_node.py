@@ -10,6 +10,7 @@ from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.executors import SingleThreadedExecutor
 
 from foxglove_bridge.front import Front
+from foxglove_bridge.origin_policy import OriginPolicy
 from foxglove_bridge.protocol_v1 import V1Server
 from foxglove_bridge.ros_bridge import FoxgloveBridge
 from foxglove_bridge.sdk_server import SdkServer
@@ -25,7 +26,9 @@ async def serve(node: FoxgloveBridge, stop: threading.Event) -> None:
     node.frontends += [v1, sdk]
     settings = node.settings
     try:
-        front = await Front(sdk.port, v1.port).start(settings.address, settings.port)
+        policy = OriginPolicy(settings.origin_allowlist, settings.address)
+        front = await Front(sdk.port, v1.port, policy, node.get_logger().warn).start(
+            settings.address, settings.port)
     except OSError as error:
         node.get_logger().error(f'Failed to listen on {settings.address}:{settings.port}: '
                                 f'{error.strerror}')

@@ -8,6 +8,8 @@ from dataclasses import dataclass
 from rcl_interfaces.msg import IntegerRange, ParameterDescriptor
 from rclpy.node import Node
 
+from foxglove_bridge.origin_policy import DEFAULT_ORIGINS, ORIGIN_PARAMETER
+
 DEFAULT_CAPABILITIES = ['clientPublish', 'parameters', 'parametersSubscribe', 'services',
                         'connectionGraph', 'assets']
 DEFAULT_ASSET_URI = (r'^package://(?:[-\w%]+/)*[-\w%.]+\.(?:dae|fbx|glb|gltf|jpeg|jpg|mtl|obj|png'
@@ -28,6 +30,7 @@ class Settings:
     send_buffer_limit: int
     capabilities: list[str]
     asset_uri_allowlist: list[re.Pattern[str]]
+    origin_allowlist: list[re.Pattern[str]]
     include_hidden: bool
     use_sim_time: bool
 
@@ -65,6 +68,10 @@ def declare_settings(node: Node) -> Settings:
     assets = _declare(node, 'asset_uri_allowlist', [DEFAULT_ASSET_URI],
                       'List of regular expressions (ECMAScript) of whitelisted asset URIs. '
                       'Uses the resource retriever to fetch assets.')
+    origins = _declare(node, ORIGIN_PARAMETER, DEFAULT_ORIGINS,
+                       'List of regular expressions (ECMAScript) of the web origins whose pages '
+                       'may connect (whole-string match); clients sending no Origin header '
+                       '(desktop apps, programs) always may.')
     return Settings(
         port=int(_declare(node, 'port', 8765, 'The TCP port to bind the WebSocket server to',
                           (0, 65535))),
@@ -83,6 +90,7 @@ def declare_settings(node: Node) -> Settings:
         include_hidden=bool(_declare(node, 'include_hidden', False,
                                      'Include hidden topics and services')),
         asset_uri_allowlist=_patterns(node, 'asset_uri_allowlist', list(assets)),
+        origin_allowlist=_patterns(node, ORIGIN_PARAMETER, list(origins)),
         use_sim_time=bool(node.get_parameter('use_sim_time').value),
         **whitelist,
     )

@@ -18,7 +18,14 @@ from typing import Any
 from websockets.asyncio.server import ServerConnection, serve
 from websockets.exceptions import ConnectionClosed
 
-from foxglove_bridge.ros_bridge import BridgeError, ChannelInfo, FoxgloveBridge, Graph, ServiceInfo
+from foxglove_bridge.ros_bridge import (
+    CLIENT_ENCODINGS,
+    BridgeError,
+    ChannelInfo,
+    FoxgloveBridge,
+    Graph,
+    ServiceInfo,
+)
 from foxglove_bridge.ros_parameters import ParameterError
 
 SUBPROTOCOL = 'foxglove.websocket.v1'
@@ -225,7 +232,8 @@ class V1Server:
         self.clients[client.number] = client
         sender = asyncio.create_task(client.sender())
         client.send({'op': 'serverInfo', 'name': 'foxglove_bridge',
-                     'capabilities': self.capabilities, 'supportedEncodings': ['cdr'],
+                     'capabilities': self.capabilities,
+                     'supportedEncodings': list(CLIENT_ENCODINGS),
                      'metadata': {'ROS_DISTRO': 'jazzy'}, 'sessionId': self.session_id})
         channels = list(self.ros.channels.values())
         if channels:

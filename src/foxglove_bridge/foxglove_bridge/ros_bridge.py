@@ -3,12 +3,13 @@
 One rclpy node, spun on its own thread. The WebSocket front-ends (one per subprotocol) call
 its methods from their threads; it calls them back through the `Frontend` protocol. Topic
 payloads stay CDR bytes from DDS to the socket (`raw=True`), and client-published CDR goes
-to DDS as it came.
+to DDS as it came; client-published JSON (upstream's other encoding) is converted first.
 """
 
 from __future__ import annotations
 
 import concurrent.futures
+import json
 import os
 import queue
 import threading
@@ -23,14 +24,17 @@ from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.serialization import deserialize_message, serialize_message
 from rosgraph_msgs.msg import Clock
+from rosidl_runtime_py.set_message import FieldError
 
 from foxglove_bridge.definitions import DefinitionNotFound, full_text, interface_class
 from foxglove_bridge.parameters import Settings, allowed, declare_settings
 from foxglove_bridge.ros_parameters import ParameterAccess
+from rosidl_runtime_py import set_message_fields
 
 GRAPH_PERIOD = 1.0  # seconds between graph polls (new topics and services show up this late)
 SERVICE_TIMEOUT = 5.0  # seconds a client's service call may take
 JOB_TIMEOUT = 5.0  # seconds a front-end waits for the ROS thread to create or destroy
+CLIENT_ENCODINGS = ('cdr', 'json')  # what clients may publish in (upstream Jazzy's two)
 
 
 class BridgeError(Exception):
@@ -79,6 +83,7 @@ class ClientPublisher:
     topic: str
     msg_class: Any
     publisher: Any
+    encoding: str
 
 
 class FoxgloveBridge(Node):
@@ -288,9 +293,9 @@ class FoxgloveBridge(Node):
                          schema_name: str) -> None:
         if 'clientPublish' not in self.settings.capabilities:
             raise BridgeError('Server does not support clientPublish capability')
-        if encoding != 'cdr':
+        if encoding not in CLIENT_ENCODINGS:
             raise BridgeError(f"Unsupported encoding '{encoding}' for topic '{topic}': "
-                              "this bridge accepts 'cdr' only")
+                              "this bridge accepts 'cdr' and 'json'")
         if not allowed(self.settings.client_topic_whitelist, topic):
             raise BridgeError(f"Topic '{topic}' is not whitelisted (client_topic_whitelist)")
         type_name = schema_name if schema_name.count('/') == 2 else schema_name.replace(
@@ -303,7 +308,7 @@ class FoxgloveBridge(Node):
             if key in self._client_pubs:
                 raise BridgeError(f"Client channel for topic '{topic}' is already advertised")
             publisher = self.on_ros_thread(self.create_publisher, msg_class, topic, 10)
-            self._client_pubs[key] = ClientPublisher(topic, msg_class, publisher)
+            self._client_pubs[key] = ClientPublisher(topic, msg_class, publisher, encoding)
         self.get_logger().info(f"Client advertised topic '{topic}' ({type_name})")
 
     def client_unadvertise(self, key: Hashable) -> None:
@@ -316,6 +321,9 @@ class FoxgloveBridge(Node):
         entry = self._client_pubs.get(key)
         if entry is None:
             raise BridgeError('Unknown client channel: advertise it first')
+        if entry.encoding == 'json':
+            entry.publisher.publish(self._from_json(entry, data))
+            return
         try:
             # Checked, not converted: what goes to DDS are the client's own CDR bytes.
             deserialize_message(data, entry.msg_class)
@@ -323,6 +331,23 @@ class FoxgloveBridge(Node):
             raise BridgeError(f"Message for '{entry.topic}' is not valid CDR of "
                               f'{entry.msg_class.__module__}/{entry.msg_class.__name__}') from None
         entry.publisher.publish(data)
+
+    @staticmethod
+    def _from_json(entry: ClientPublisher, data: bytes) -> Any:
+        """The message a JSON object (field names to values, as upstream's parser takes) gives;
+        BridgeError naming the field when it does not fit the type."""
+        try:
+            values = json.loads(data)
+        except (ValueError, RecursionError) as error:
+            raise BridgeError(f"Message for '{entry.topic}' is not valid JSON: {error}") from None
+        message = entry.msg_class()
+        try:
+            set_message_fields(message, values)
+        except (FieldError, RecursionError) as error:
+            raise BridgeError(f"Message for '{entry.topic}' does not fit "
+                              f'{entry.msg_class.__module__}/{entry.msg_class.__name__}: '
+                              f'{error}') from None
+        return message
 
     # --- services -------------------------------------------------------------------------
 

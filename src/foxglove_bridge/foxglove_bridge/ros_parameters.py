@@ -50,18 +50,38 @@ def to_json(value: ParameterValue) -> tuple[Any, str | None] | None:
     return None
 
 
+INT64 = (-2**63, 2**63 - 1)
+
+
+def _integer(name: str, value: int) -> int:
+    if not INT64[0] <= value <= INT64[1]:
+        raise ParameterError(f"Parameter '{name}': integer {value} is out of the 64-bit range")
+    return value
+
+
+def _double(name: str, value: float) -> float:
+    try:
+        return float(value)
+    except OverflowError:
+        raise ParameterError(f"Parameter '{name}': {value} is too large for a float64") from None
+
+
 def from_json(name: str, value: Any, hint: str | None) -> ParameterValue:
     """The ROS value for a client's JSON value; ParameterError names what is wrong."""
     out = ParameterValue()
     if hint == 'byte_array' and isinstance(value, str):
+        try:
+            data = base64.b64decode(value, validate=True)
+        except ValueError:
+            raise ParameterError(f"Parameter '{name}': byte_array value is not base64") from None
         out.type, out.byte_array_value = ParameterType.PARAMETER_BYTE_ARRAY, [
-            bytes([b]) for b in base64.b64decode(value)]
+            bytes([b]) for b in data]
     elif isinstance(value, bool):
         out.type, out.bool_value = ParameterType.PARAMETER_BOOL, value
     elif isinstance(value, int) and hint != 'float64':
-        out.type, out.integer_value = ParameterType.PARAMETER_INTEGER, value
+        out.type, out.integer_value = ParameterType.PARAMETER_INTEGER, _integer(name, value)
     elif isinstance(value, (int, float)):
-        out.type, out.double_value = ParameterType.PARAMETER_DOUBLE, float(value)
+        out.type, out.double_value = ParameterType.PARAMETER_DOUBLE, _double(name, value)
     elif isinstance(value, str):
         out.type, out.string_value = ParameterType.PARAMETER_STRING, value
     elif isinstance(value, list) and all(isinstance(v, bool) for v in value) and value:
@@ -70,11 +90,12 @@ def from_json(name: str, value: Any, hint: str | None) -> ParameterValue:
         out.type, out.string_array_value = ParameterType.PARAMETER_STRING_ARRAY, value
     elif (isinstance(value, list) and all(isinstance(v, int) and not isinstance(v, bool)
                                           for v in value) and hint != 'float64_array'):
-        out.type, out.integer_array_value = ParameterType.PARAMETER_INTEGER_ARRAY, value
+        out.type, out.integer_array_value = ParameterType.PARAMETER_INTEGER_ARRAY, [
+            _integer(name, v) for v in value]
     elif isinstance(value, list) and all(isinstance(v, (int, float)) and not isinstance(v, bool)
                                          for v in value):
         out.type, out.double_array_value = ParameterType.PARAMETER_DOUBLE_ARRAY, [
-            float(v) for v in value]
+            _double(name, v) for v in value]
     else:
         raise ParameterError(f"Parameter '{name}': unsupported value {value!r} (allowed: bool, "
                              'integer, float, string, byte_array or arrays of one of them)')
@@ -140,9 +161,11 @@ class ParameterAccess:
         """Values of `names`, or of every whitelisted parameter when `names` is empty."""
         wanted: dict[str, list[str]] = {}
         if names:
+            present = set(self._nodes())
             for full in names:
                 node, param = split_name(full)
-                wanted.setdefault(node, []).append(param)
+                if node in present:  # no client (and no 3 s wait) for a node that is not there
+                    wanted.setdefault(node, []).append(param)
         else:
             for node in self._nodes():
                 try:
@@ -166,10 +189,13 @@ class ParameterAccess:
     def set(self, items: list[tuple[str, Any, str | None]]) -> list[dict[str, Any]]:
         """Set (name, value, hint) items; returns the values the nodes now hold."""
         by_node: dict[str, list[Parameter]] = {}
+        present = set(self._nodes())
         for full, value, hint in items:
             node, param = split_name(full)
             if not allowed(self._whitelist, full):
                 raise ParameterError(f"Parameter '{full}' is not whitelisted (param_whitelist)")
+            if node not in present:
+                raise ParameterError(f"Parameter '{full}': node '{node}' not found")
             by_node.setdefault(node, []).append(Parameter(name=param,
                                                           value=from_json(full, value, hint)))
         failures = []

@@ -29,7 +29,14 @@ from foxglove.websocket import (
     StatusLevel,
 )
 
-from foxglove_bridge.ros_bridge import BridgeError, ChannelInfo, FoxgloveBridge, Graph, ServiceInfo
+from foxglove_bridge.ros_bridge import (
+    CLIENT_ENCODINGS,
+    BridgeError,
+    ChannelInfo,
+    FoxgloveBridge,
+    Graph,
+    ServiceInfo,
+)
 from foxglove_bridge.ros_parameters import ParameterError
 
 CAPABILITIES = {'clientPublish': Capability.ClientPublish, 'parameters': Capability.Parameters,
@@ -63,7 +70,7 @@ class SdkServer:
             capabilities.append(Capability.Time)
         self.server = foxglove.start_server(
             name='foxglove_bridge', host='127.0.0.1', port=0, capabilities=capabilities,
-            server_listener=self, supported_encodings=['cdr'], context=self.context,
+            server_listener=self, supported_encodings=list(CLIENT_ENCODINGS), context=self.context,
             session_id=session_id,
             asset_handler=self._asset if 'assets' in ros.settings.capabilities else None)
         self.port = self.server.port

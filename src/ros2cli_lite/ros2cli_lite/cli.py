@@ -70,7 +70,8 @@ def _dispatch(argv: list[str]) -> int | str:
 
 
 def run_here(argv: list[str]) -> int | str:
-    """Parse and run in this process: the daemon's entry for the verbs it runs (proxy.py)."""
+    """Parse and run in this process: the daemon's entry for the verbs it runs (proxy.py,
+    which calls this; the CLI side, daemon/verb_client.py, never calls back)."""
     return _run(argv, daemon_may_run=False)
 
 
@@ -91,7 +92,7 @@ def _run(argv: list[str], daemon_may_run: bool) -> int | str:
         parser.parse_args([args._command, '--help'])
         return 0
     if daemon_may_run and _runs_in_daemon(func, args):
-        from ros2cli_lite.daemon.proxy import run_in_daemon
+        from ros2cli_lite.daemon.verb_client import run_in_daemon
         code = run_in_daemon(argv)
         if code is not None:
             return code

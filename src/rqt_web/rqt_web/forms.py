@@ -18,6 +18,16 @@ class FormError(ValueError):
     """Bad input from a form: the message is shown in the page as is."""
 
 
+def topic_name_problem(name: str) -> str | None:
+    """Why `name` is no valid fully qualified topic name (rclpy's words), or None."""
+    from rclpy.validate_full_topic_name import validate_full_topic_name
+    try:
+        validate_full_topic_name(name)
+    except Exception as error:  # rclpy's InvalidTopicNameException and friends
+        return str(error)
+    return None
+
+
 def interface_class(name: str, kind: str) -> Any:
     getter = {'msg': utilities.get_message, 'srv': utilities.get_service,
               'action': utilities.get_action}[kind]

@@ -43,6 +43,12 @@ RESOURCE_SUFFIXES = ('.stl', '.dae', '.obj', '.mtl', '.png', '.jpg', '.jpeg')
 MAX_TOPIC = 256
 
 
+def _absolute_topic(topic: str) -> bool:
+    """A topic name a subscription or publisher can have (rclpy would raise on any other)."""
+    from rqt_web.forms import topic_name_problem
+    return len(topic) <= MAX_TOPIC and topic_name_problem(topic) is None
+
+
 def read_rviz(path: str) -> dict:
     """The parts of an upstream .rviz file the page shows; ValueError naming what is wrong."""
     if not path.endswith('.rviz'):
@@ -164,8 +170,7 @@ class MarkerFeed:
 async def markers_route(request: web.Request) -> web.Response:
     topic = request.query.get('topic', '/visualization_marker')
     kind = request.query.get('type', 'Marker')
-    if not topic.startswith('/') or len(topic) > MAX_TOPIC or kind not in ('Marker',
-                                                                           'MarkerArray'):
+    if not _absolute_topic(topic) or kind not in ('Marker', 'MarkerArray'):
         raise web.HTTPBadRequest(text='topic must be an absolute topic name and type Marker '
                                  f'or MarkerArray, got {topic!r}, {kind!r}\n')
     app = request.app
@@ -182,7 +187,7 @@ LATEST_TYPES = ('geometry_msgs/msg/PoseStamped', 'geometry_msgs/msg/PoseArray',
 
 async def latest_route(request: web.Request) -> web.Response:
     topic, kind = request.query.get('topic', ''), request.query.get('type', '')
-    if not topic.startswith('/') or len(topic) > MAX_TOPIC or kind not in LATEST_TYPES:
+    if not _absolute_topic(topic) or kind not in LATEST_TYPES:
         raise web.HTTPBadRequest(text=f'topic must be an absolute topic name and type one of '
                                  f'{", ".join(LATEST_TYPES)}, got {topic!r}, {kind!r}\n')
     app = request.app
@@ -378,7 +383,7 @@ class Stream:
 async def stream_route(request: web.Request) -> web.StreamResponse:
     kind = request.match_info['kind']
     topic = request.query.get('topic', '')
-    if kind not in STREAMS or not topic.startswith('/') or len(topic) > MAX_TOPIC:
+    if kind not in STREAMS or not _absolute_topic(topic):
         raise web.HTTPBadRequest(text=f'topic must be an absolute topic name, got {topic!r}\n')
     try:
         after = int(request.query.get('after', '0'))
@@ -459,9 +464,9 @@ async def tool_route(request: web.Request) -> web.Response:
         x, y, z, yaw = (float(body.get(k, 0.0)) for k in ('x', 'y', 'z', 'yaw'))
         if not all(math.isfinite(v) for v in (x, y, z, yaw)):
             raise ValueError('x, y, z and yaw must be finite numbers')
-        if not frame or len(frame) > MAX_TOPIC or not topic.startswith('/'):
+        if not frame or len(frame) > MAX_TOPIC or not _absolute_topic(topic):
             raise ValueError('frame must be a frame id and topic an absolute topic name')
-    except (ValueError, TypeError, KeyError, AttributeError) as error:
+    except (ValueError, TypeError, KeyError, AttributeError, OverflowError) as error:
         raise web.HTTPBadRequest(text=f'tool must be one of {", ".join(TOOLS)} with finite '
                                  f'x, y, z, yaw: {error}\n') from None
     bridge = request.app['bridge']
@@ -483,7 +488,7 @@ async def config_route(request: web.Request) -> web.Response:
 
 async def description_route(request: web.Request) -> web.Response:
     topic = request.query.get('topic', '/robot_description')
-    if not topic.startswith('/') or len(topic) > MAX_TOPIC:
+    if not _absolute_topic(topic):
         raise web.HTTPBadRequest(text=f'topic must be an absolute topic name, got {topic!r}\n')
     app = request.app
     if 'rviz_descriptions' not in app:

@@ -161,17 +161,25 @@ async def publish(request: web.Request) -> web.Response:
 
 
 def _check_topic_name(name: str) -> None:
+    problem = forms.topic_name_problem(name)
+    if problem is not None:
+        raise forms.FormError(f'invalid topic name {name!r}: {problem}')
+
+
+def _check_node_name(name: str) -> None:
+    """A fully qualified node name is a valid absolute name: its services are named under it."""
     from rclpy.validate_full_topic_name import validate_full_topic_name
     try:
-        validate_full_topic_name(name)
-    except Exception as error:  # rclpy's InvalidTopicNameException and friends
-        raise forms.FormError(f'invalid topic name {name!r}: {error}') from None
+        validate_full_topic_name(name, is_service=True)
+    except Exception as error:  # rclpy's InvalidServiceNameException and friends
+        raise forms.FormError(f'invalid node name {name!r}: {error}') from None
 
 
 async def _parameter_infos(bridge: RosBridge, node: str, names: list[str] | None = None
                            ) -> list[dict]:
     from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters
 
+    _check_node_name(node)
     if names is None:
         listed = await bridge.call_service(f'{node}/list_parameters',
                                            'rcl_interfaces/srv/ListParameters',
@@ -191,6 +199,8 @@ async def parameters(request: web.Request) -> web.Response:
     node = request.query.get('node', '')
     try:
         infos = await _parameter_infos(request.app['bridge'], node)
+    except forms.FormError as error:
+        return _error(str(error))
     except TimeoutError as error:
         return _error(f'{node} offers no parameter services ({error})')
     return web.json_response({'node': node, 'parameters': infos})
@@ -459,6 +469,8 @@ async def websocket(request: web.Request) -> web.WebSocketResponse:
                 continue
             if isinstance(message, dict):
                 session.spawn(session.handle(message))
+            else:
+                session.send({'op': 'error', 'error': 'messages must be JSON objects'})
     finally:
         writer.cancel()
         request.app['sessions'].discard(session)

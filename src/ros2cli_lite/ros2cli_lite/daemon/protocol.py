@@ -17,10 +17,15 @@ from zlib import adler32, crc32
 # Bump when requests or answers change shape; the package's source files' stamps are added
 # to it so a daemon running older code (an edited workspace) is replaced too: it also runs
 # verbs for the CLI (proxy.py), so every module counts.
-PROTOCOL = 2
+PROTOCOL = 3
 # The settings that decide which DDS graph a process sees: a daemon serves exactly one set.
 SETTINGS = ('ROS_DOMAIN_ID', 'ROS_AUTOMATIC_DISCOVERY_RANGE', 'ROS_STATIC_PEERS',
             'RMW_IMPLEMENTATION', 'ROS_LOCALHOST_ONLY')
+# What decides the code and interfaces a verb loads (a sourced overlay changes them): a
+# process runs verbs only for CLIs whose values are its own; the daemon keeps one worker
+# process per other set of values (server.py).
+ENVIRONMENT = ('AMENT_PREFIX_PATH', 'PYTHONPATH', 'LD_LIBRARY_PATH', 'VIRTUAL_ENV',
+               'RMW_IMPLEMENTATION', 'ROS_DISTRO')
 MAX_MESSAGE = 64 * 1024 * 1024
 
 
@@ -84,6 +89,17 @@ def socket_path(env: dict[str, str] | None = None) -> Path:
     digest = _digest(json.dumps(values, sort_keys=True))
     domain = values['ROS_DOMAIN_ID'] or '0'
     return runtime_dir() / f'daemon-{domain}-{digest}.sock'
+
+
+def environment() -> dict[str, str]:
+    """This process's values of ENVIRONMENT, unset ones as ''."""
+    return {name: os.environ.get(name, '') for name in ENVIRONMENT}
+
+
+def worker_path(sock: Path, values: dict[str, str]) -> Path:
+    """The socket of the daemon's worker for the environment `values` (next to `sock`)."""
+    digest = _digest(json.dumps(values, sort_keys=True))
+    return sock.with_name(f'{sock.stem}-env-{digest}.sock')
 
 
 def lock_path(sock: Path) -> Path:

@@ -1,4 +1,4 @@
-"""One-shot verbs that the daemon runs for the CLI (`topic echo --once`, `param get`, ...).
+"""The daemon's side of a one-shot verb run for the CLI (`topic echo --once`, `param get`, ...).
 
 A verb with a node of its own used to create a DDS participant and wait for discovery: 0.3 to
 2 s, depending on when the other participants' announcements arrive. The daemon's participant
@@ -8,93 +8,24 @@ context (the same participant, whose endpoints the other nodes match within mill
 its stdout and stderr stream back to the CLI as they are written, and it stops when the CLI
 goes away (Ctrl-C).
 
-The CLI runs the verb itself whenever the daemon cannot: none running or not ready yet, an
-environment other than the daemon's (another overlay's interfaces), or interface code loaded
-by the daemon that has changed on disk since (a rebuilt package): no answer from stale code.
-
-Both sides are here; the CLI side imports nothing heavy.
+A CLI in another environment (a sourced overlay: other interfaces, other code) is served by
+the daemon's worker for that environment (server.py), a process started with the CLI's own
+interpreter and variables. The CLI runs the verb itself whenever neither can: none running
+or not ready yet, or interface code loaded that has changed on disk since (a rebuilt
+package): no answer from stale code. The CLI's side is verb_client.py.
 """
 
 from __future__ import annotations
 
 import io
 import os
-import socket
 import sys
 import threading
 from collections.abc import Callable
 from typing import Any
 
-# What decides the code and interfaces a verb loads: the daemon runs a verb only for a CLI
-# whose values are its own.
-ENVIRONMENT = ('AMENT_PREFIX_PATH', 'PYTHONPATH', 'LD_LIBRARY_PATH', 'VIRTUAL_ENV',
-               'RMW_IMPLEMENTATION', 'ROS_DISTRO')
-
 _local = threading.local()
 
-
-def environment() -> dict[str, str]:
-    return {name: os.environ.get(name, '') for name in ENVIRONMENT}
-
-
-# --------------------------------------------------------------------------------------
-# CLI side
-# --------------------------------------------------------------------------------------
-
-def run_in_daemon(argv: list[str]) -> int | None:
-    """The verb's exit code, run by this shell's daemon; None when the CLI must run it."""
-    from ros2cli_lite.daemon import protocol
-    try:
-        path = protocol.socket_path()
-    except OSError:
-        return None
-    request = {'op': 'run', 'argv': argv, 'pid': os.getpid(), 'environment': environment(),
-               'version': protocol.version()}
-    with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as sock:
-        try:
-            sock.connect(str(path))
-            sock.sendall(protocol.encode(request))
-        except OSError:
-            return None  # no daemon (graph verbs start it): run here
-        written = interrupted = False
-        lines = sock.makefile('rb')
-        while True:
-            try:
-                line = lines.readline()
-            except KeyboardInterrupt:
-                if interrupted:  # a second Ctrl-C: leave at once
-                    raise
-                # Ctrl-C: the daemon ends the verb as Ctrl-C would (send_goal cancels its
-                # goal, ...), and what the verb says meanwhile is still shown.
-                sock.shutdown(socket.SHUT_WR)
-                interrupted = True
-                continue
-            try:
-                message = protocol.decode(line)
-            except protocol.ProtocolError:
-                break  # end of stream: the daemon died
-            if 'exit' in message:
-                return int(message['exit'])
-            if 'declined' in message:  # before the verb started
-                return None
-            stream = sys.stdout if 'out' in message else sys.stderr
-            try:
-                stream.write(message.get('out', message.get('err', '')))
-                stream.flush()
-            except BrokenPipeError:
-                # The reader went away (`ros2 ... | head`): stop quietly, as cli._guard does.
-                os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-                return 1
-            written = True
-    if not written:
-        return None
-    print('The ros2 daemon stopped while running the command; run it again', file=sys.stderr)
-    return 1
-
-
-# --------------------------------------------------------------------------------------
-# Daemon side
-# --------------------------------------------------------------------------------------
 
 class Session:
     """The verb running in this thread: its CLI's pid, the daemon's context, its output."""
@@ -164,15 +95,17 @@ def run(argv: list[str], current: Session) -> int:
 
 
 class LoadedCode:
-    """Interface and package modules the daemon has loaded from the workspace's prefixes, with
-    their files' stamps: once one changed on disk (a rebuild), the daemon's copy is stale."""
+    """Interface and package modules the daemon has loaded from the workspace's prefixes and
+    PYTHONPATH, with their files' stamps: once one changed on disk (a rebuild), the daemon's
+    copy is stale."""
 
     def __init__(self) -> None:
         self._stamps: dict[str, tuple[int, int]] = {}
 
     def changed(self) -> bool:
-        prefixes = tuple(p.rstrip('/') + '/' for p in
-                         os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep) if p)
+        paths = (os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep)
+                 + os.environ.get('PYTHONPATH', '').split(os.pathsep))
+        prefixes = tuple(p.rstrip('/') + '/' for p in paths if p)
         for module in list(sys.modules.values()):
             path = getattr(module, '__file__', None)
             if not path or not path.startswith(prefixes):

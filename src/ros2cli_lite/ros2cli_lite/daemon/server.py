@@ -5,6 +5,10 @@ each request from it (see protocol.py). The first answer waits until discovery h
 later ones read the live cache. One-shot verbs run here for the CLI, in the same participant
 (proxy.py). Exits when stopped, on SIGTERM/SIGINT, or after IDLE_EXIT seconds without a
 request.
+
+A CLI whose environment is not the daemon's (an overlay sourced after the daemon started)
+is pointed at the daemon's worker for that environment: this program with `--worker`
+(workers.py).
 """
 
 from __future__ import annotations
@@ -20,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from ros2cli_lite.daemon import protocol, proxy
+from ros2cli_lite.daemon.workers import Workers, exit_with_daemon
 
 IDLE_EXIT = 2 * 60 * 60.0      # as ros2cli's daemon: two hours without a request
 READY_BOUND = 15.0             # a request waits at most this long for the first settling
@@ -159,11 +164,15 @@ class DaemonServer(socketserver.ThreadingUnixStreamServer):
     daemon_threads = True
     request_queue_size = 64
 
-    def __init__(self, path: Path, cache: GraphCache) -> None:
+    def __init__(self, path: Path, cache: GraphCache, is_worker: bool = False) -> None:
         self.version = protocol.version()
         self.cache = cache
         self.loaded = proxy.LoadedCode()
         self.last_request = time.monotonic()
+        self.path = path
+        self.is_worker = is_worker
+        self.environment = protocol.environment()
+        self.workers = Workers(path)
         old_umask = os.umask(0o177)  # the socket is created 0600: only its user may connect
         try:
             super().__init__(str(path), _Handler)
@@ -188,19 +197,25 @@ class DaemonServer(socketserver.ThreadingUnixStreamServer):
             return {'ok': True, 'publishers': publishers, 'subscribers': subscribers}
         return {'ok': False, 'error': f'unknown request {op!r}'}
 
-
     def run_verb(self, request: dict[str, Any], connection: Any, output: Any) -> None:
         """Run a one-shot verb for the CLI (proxy.py), streaming its output; or decline with
-        one line, and the CLI runs it itself."""
+        one line (naming the worker of the CLI's environment when there is one to ask), and
+        the CLI runs it itself."""
         self.last_request = time.monotonic()
+        if request.get('environment') != self.environment:
+            worker = None if self.is_worker else self.workers.for_cli(request)
+            output.write(protocol.encode({'declined': 'environment',
+                                          'worker': str(worker) if worker else None}))
+            return
         context = self.cache.context()
         reason = ('version' if request.get('version') != self.version else
-                  'environment' if request.get('environment') != proxy.environment() else
                   'not ready' if context is None else
                   'stale' if self.loaded.changed() else None)
         if reason is not None:
             output.write(protocol.encode({'declined': reason}))
-            if reason == 'stale':  # the next request starts a daemon on the new code
+            # Stale code: the next request starts a daemon (or worker) on the new code; a
+            # worker of another version will not serve its environment again either.
+            if reason == 'stale' or (reason == 'version' and self.is_worker):
                 threading.Thread(target=self.shutdown, daemon=True).start()
             return
         sending = threading.Lock()
@@ -234,8 +249,11 @@ def _exit_when_idle(server: DaemonServer, stopping: threading.Event) -> None:
             return
 
 
-def main() -> int:
+def main(argv: list[str] | None = None) -> int:
+    is_worker = '--worker' in (sys.argv[1:] if argv is None else argv)
     path = protocol.socket_path()
+    if is_worker:
+        path = protocol.worker_path(path, protocol.environment())
     lock = open(protocol.lock_path(path), 'a')  # held (and locked) for the process's life
     try:
         fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -253,7 +271,7 @@ def main() -> int:
     from node_runtime.discovery import announce_often
     announce_often(fresh_port=False)
     cache = GraphCache()
-    server = DaemonServer(path, cache)
+    server = DaemonServer(path, cache, is_worker)
     proxy.install_streams()
     stopping = threading.Event()
 
@@ -264,8 +282,10 @@ def main() -> int:
     threading.Thread(target=cache.start, daemon=True).start()
     threading.Thread(target=cache.watch, args=(stopping,), daemon=True).start()
     threading.Thread(target=_exit_when_idle, args=(server, stopping), daemon=True).start()
-    print(f'daemon {os.getpid()} serving {path} ({protocol.settings()})', file=sys.stderr,
-          flush=True)
+    if is_worker:
+        threading.Thread(target=exit_with_daemon, args=(server.shutdown,), daemon=True).start()
+    print(f'{"worker" if is_worker else "daemon"} {os.getpid()} serving {path} '
+          f'({protocol.settings()})', file=sys.stderr, flush=True)
     try:
         server.serve_forever(poll_interval=0.5)
     finally:
@@ -275,6 +295,7 @@ def main() -> int:
         except OSError:
             pass
         server.server_close()
+        server.workers.stop()
         cache.stop()
     return 0
 
