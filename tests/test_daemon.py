@@ -124,6 +124,12 @@ def test_sigkilled_node_is_gone_within_3_s_and_clean_exit_at_once(ros_env, launc
     assert ros2(ros_env, 'node', 'list').stdout == ''
 
 
+def _socket_entries(path) -> int:
+    """How many sockets carry this path: the listening one, then one per connection."""
+    with open('/proc/net/unix') as table:
+        return sum(1 for line in table if line.rstrip().endswith(str(path)))
+
+
 def test_daemon_killed_is_replaced_and_a_crash_mid_call_is_one_line(ros_env, node):
     assert ros2(ros_env, 'node', 'list').stdout == '/cli_test_node\n'
     first = daemon_pid(ros_env)
@@ -139,7 +145,11 @@ def test_daemon_killed_is_replaced_and_a_crash_mid_call_is_one_line(ros_env, nod
     try:
         call = subprocess.Popen(['ros2', 'node', 'list'], env=ros_env, text=True,
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-        time.sleep(0.5)  # the command is connected (the kernel accepted it) and waits
+        # The command has connected once the kernel queued its connection on the stopped
+        # daemon's socket: a second entry with the socket's path (a fixed sleep was too short
+        # on a loaded machine: the command then found no daemon and started a new one).
+        wait_for(lambda: _socket_entries(protocol.socket_path(ros_env)) >= 2, 30,
+                 'the command to connect to the stopped daemon')
         os.kill(second, signal.SIGKILL)
     finally:
         os.kill(second, signal.SIGCONT)
