@@ -72,8 +72,17 @@ def _run_goal(node, client, goal, args: argparse.Namespace) -> int | str:
                 f'{args.timeout:g} s (is its node running? see `ros2 action list`)')
     print(f'Sending goal:\n     {message_to_yaml(goal)}', flush=True)
 
+    # rclpy may hand over feedback before the goal response that accepts the goal (both can
+    # arrive in one wait): hold it until 'Goal accepted' is printed, so the output keeps
+    # ros2cli's order.
+    early_feedback: list[str] | None = []
+
     def on_feedback(feedback) -> None:
-        print(f'Feedback:\n    {message_to_yaml(feedback.feedback)}', flush=True)
+        text = f'Feedback:\n    {message_to_yaml(feedback.feedback)}'
+        if early_feedback is None:
+            print(text, flush=True)
+        else:
+            early_feedback.append(text)
 
     handle = _wait(node, client.send_goal_async(
         goal, feedback_callback=on_feedback if args.feedback else None), 'sending goal')
@@ -81,6 +90,9 @@ def _run_goal(node, client, goal, args: argparse.Namespace) -> int | str:
         print('Goal was rejected.')
         return 0
     print(f'Goal accepted with ID: {bytes(handle.goal_id.uuid).hex()}\n', flush=True)
+    for text in early_feedback:
+        print(text, flush=True)
+    early_feedback = None
     try:
         result = _wait(node, handle.get_result_async(), 'getting result')
     except KeyboardInterrupt:
