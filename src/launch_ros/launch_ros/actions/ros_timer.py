@@ -11,12 +11,9 @@ from launch.event_handler import EventHandler
 from launch.event_handlers import OnShutdown
 from launch.events import TimerEvent
 from launch.frontend import expose_action
+from launch.utilities import ensure_argument_type
+from launch.utilities.type_utils import normalize_typed_substitution, perform_typed_substitution
 
-from launch_ros._launch_api import (
-    ensure_argument_type,
-    normalize_typed_substitution,
-    perform_typed_substitution,
-)
 from launch_ros.ros_adapters import get_ros_node
 
 if TYPE_CHECKING:
@@ -28,9 +25,8 @@ if TYPE_CHECKING:
 class ROSTimer(TimerAction):
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        kwargs = {'period': entity.get_substitutions('period', True),
-                  'actions': parser.parse_children(entity)}
-        return cls, {**kwargs, **cls.parse_condition(entity)}
+        # TimerAction reads the period and the nested actions.
+        return cls, super().parse(entity, parser)[1]
 
     def __init__(self, *, period: Any, actions: Iterable[Any], **kwargs: Any) -> None:
         ensure_argument_type(period, (float, int, str, list, tuple, *_substitution_types()),
