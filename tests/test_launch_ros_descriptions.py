@@ -226,3 +226,27 @@ def test_a_component_container_fails_with_one_clear_line():
         executable='component_container',
         composable_node_descriptions=[ComposableNode(package='p', plugin='p::Node')])])
     assert code == 1
+
+
+def test_frontend_node_params_are_typed_and_unescaped_as_upstream():
+    """<param value-sep> items lose their escapes (`\\'2\\'` is the text '2' in quotes),
+    are read as YAML unless a type says otherwise; nested <param>s make dotted names."""
+    import io
+
+    from launch.frontend import Parser
+    xml = r'''<launch><node pkg="demo_nodes_py" exec="talker" name="t">
+      <param name="quoted" value="\'2\', \'5\'" value-sep=", "/>
+      <param name="numbers" value="1, 2" value-sep=", "/>
+      <param name="text" type="str" value="a: b"/>
+      <param name="group"><param name="flag" value="true"/></param>
+    </node></launch>'''
+    root, parser = Parser.load(io.StringIO(xml))
+    node = parser.parse_description(root).entities[0]
+    context = LaunchContext()
+    node._perform_substitutions(context)
+    words = command_of(node, context)
+    values: dict = {}
+    for i in [i for i, word in enumerate(words) if word == '--params-file']:
+        values.update(yaml.safe_load(Path(words[i + 1]).read_text())['/**']['ros__parameters'])
+    assert values == {'quoted': ["'2'", "'5'"], 'numbers': [1, 2], 'text': 'a: b',
+                      'group.flag': True}
