@@ -70,9 +70,16 @@ class ROSTimer(TimerAction):
                 context.emit_event_sync(TimerEvent(timer_action=self))
                 self.cancel()
 
-        # The ROS timer ticks on the adapter's thread: hand the firing to the launch's loop.
-        self.__timer = get_ros_node(context).create_timer(
-            period, lambda: loop.call_soon_threadsafe(fire))
+        def start() -> None:
+            # The ROS timer ticks on the adapter's thread: hand the firing to the launch's loop.
+            if self.__future is not None and not self.__future.done():
+                self.__timer = get_ros_node(context).create_timer(
+                    period, lambda: loop.call_soon_threadsafe(fire))
+
+        # Made once the actions after this one have run, as upstream does in a task: a
+        # SetUseSimTime later in the same description then switches the clock first (a timer
+        # made on system time restarts its period at the first /clock jump).
+        loop.call_soon(start)
         return None
 
 
