@@ -2,7 +2,8 @@
 dummy_robot_bringup_launch.py` prints what the page shows, its nodes publish the map, the
 scan and the joint states, and the RViz page (with the package's dummy_robot.rviz: Map,
 LaserScan, RobotModel, TF in frame world) draws the map, the laser and the moving arm in
-headless Chromium. Screenshot: artifacts/rqt/rviz_dummy_robot.png."""
+headless Chromium. Screenshot: artifacts/rqt/rviz_dummy_robot.png. The package's XML and YAML
+launch files start the same robot, the URDF read with `$(file-content ...)`."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ import pytest
 from nav_msgs.msg import OccupancyGrid
 from rclpy.qos import DurabilityPolicy, QoSProfile
 from sensor_msgs.msg import JointState, LaserScan
+from std_msgs.msg import String
 
 from rqt_browser import chromium_missing, close_to, launch_browser, screenshot, start_rqt
 from support import Background, RosProcess, TestNode, wait_until
@@ -20,6 +22,35 @@ from support import Background, RosProcess, TestNode, wait_until
 RRBOT_LINKS = {'single_rrbot_link1', 'single_rrbot_link2', 'single_rrbot_link3',
                'single_rrbot_hokuyo_link', 'single_rrbot_camera_link'}
 UNKNOWN_ON_BACKGROUND = (93, 110, 108)  # rviz's unknown-cell colour at alpha 0.7 on 48 grey
+
+
+@pytest.mark.parametrize('launch_file', ['dummy_robot_bringup_launch.xml',
+                                         'dummy_robot_bringup_launch.yaml'])
+def test_dummy_robot_bringup_front_ends(launch_file: str, tmp_path: Path, domain: int,
+                                        ros_env) -> None:
+    from ament_index_python.packages import get_package_share_directory
+    urdf = (Path(get_package_share_directory('dummy_robot_bringup')) / 'launch' /
+            'single_rrbot.urdf').read_text()
+    bringup = RosProcess(['ros2', 'launch', 'dummy_robot_bringup', launch_file], ros_env,
+                         tmp_path / 'launch.log')
+    probe = TestNode(domain)
+    try:
+        bringup.wait_for_output(r'\[robot_state_publisher-2\] .*\[robot_state_publisher\]: '
+                                r'Robot initialized', timeout=20)
+        bringup.wait_for_output(r'\[dummy_laser-4\] .*\[dummy_laser\]: scan size:\t1081$')
+        descriptions = probe.collect(String, '/robot_description', QoSProfile(
+            depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
+        maps = probe.collect(OccupancyGrid, '/map', QoSProfile(
+            depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
+        joints = probe.collect(JointState, '/joint_states')
+        probe.spin_until(lambda: descriptions and maps and joints, 15,
+                         'robot description, map and joint states')
+    finally:
+        probe.close()
+        bringup.stop()
+    # The parameter is the file's text, unchanged (not read as YAML, not stripped).
+    assert descriptions[-1].data == urdf
+    assert list(joints[-1].name) == ['single_rrbot_joint1', 'single_rrbot_joint2']
 
 
 def test_dummy_robot_bringup_in_rviz(tmp_path: Path, domain: int, ros_env) -> None:

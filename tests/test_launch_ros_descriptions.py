@@ -185,9 +185,14 @@ def run_launch(actions: list) -> tuple[int, LaunchService]:
     return service.run(), service
 
 
-def test_ros_timer_follows_the_ros_clock_of_the_launch(probe, domain, monkeypatch):
-    # With SetUseSimTime the launch's own node follows /clock: a 100 s timer fires after
-    # 100 s of sim time, which the probe publishes 20 s at a time every 0.1 s.
+@pytest.mark.parametrize('sim_time_first', [True, False])
+def test_ros_timer_follows_the_ros_clock_of_the_launch(probe, domain, monkeypatch,
+                                                      sim_time_first):
+    # With SetUseSimTime the launch's own node follows /clock: a 100 s timer fires at 100 s
+    # of sim time, which the probe publishes 20 s at a time every 0.1 s. Listed before
+    # SetUseSimTime, the timer still counts from sim time 0 (upstream makes it in a task),
+    # not from the first /clock message.
+    from launch_ros.ros_adapters import get_ros_node
     monkeypatch.setenv('ROS_DOMAIN_ID', str(domain))
     clock = probe.node.create_publisher(Clock, '/clock', 10)
     now = [0]
@@ -197,16 +202,16 @@ def test_ros_timer_follows_the_ros_clock_of_the_launch(probe, domain, monkeypatc
         clock.publish(Clock(clock=Time(sec=now[0])))
 
     probe.node.create_timer(0.1, tick)
-    fired: list[float] = []
+    fired: list[tuple[float, int]] = []
     started = time.monotonic()
+    timer = ROSTimer(period=100.0, actions=[OpaqueFunction(function=lambda context: fired.append(
+        (time.monotonic(), get_ros_node(context).get_clock().now().nanoseconds)))])
+    actions = [SetUseSimTime(True), timer] if sim_time_first else [timer, SetUseSimTime(True)]
     with Background(probe):
-        code, _ = run_launch([
-            SetUseSimTime(True),
-            ROSTimer(period=100.0, actions=[
-                OpaqueFunction(function=lambda _context: fired.append(time.monotonic()))]),
-        ])
+        code, _ = run_launch(actions)
     assert code == 0 and len(fired) == 1
-    assert fired[0] - started < 10  # not 100 s of wall time
+    assert fired[0][0] - started < 10  # not 100 s of wall time
+    assert fired[0][1] == 100 * 10**9
 
 
 def test_set_ros_log_dir_sets_where_later_nodes_log(tmp_path, monkeypatch):
@@ -226,3 +231,27 @@ def test_a_component_container_fails_with_one_clear_line():
         executable='component_container',
         composable_node_descriptions=[ComposableNode(package='p', plugin='p::Node')])])
     assert code == 1
+
+
+def test_frontend_node_params_are_typed_and_unescaped_as_upstream():
+    """<param value-sep> items lose their escapes (`\\'2\\'` is the text '2' in quotes),
+    are read as YAML unless a type says otherwise; nested <param>s make dotted names."""
+    import io
+
+    from launch.frontend import Parser
+    xml = r'''<launch><node pkg="demo_nodes_py" exec="talker" name="t">
+      <param name="quoted" value="\'2\', \'5\'" value-sep=", "/>
+      <param name="numbers" value="1, 2" value-sep=", "/>
+      <param name="text" type="str" value="a: b"/>
+      <param name="group"><param name="flag" value="true"/></param>
+    </node></launch>'''
+    root, parser = Parser.load(io.StringIO(xml))
+    node = parser.parse_description(root).entities[0]
+    context = LaunchContext()
+    node._perform_substitutions(context)
+    words = command_of(node, context)
+    values: dict = {}
+    for i in [i for i, word in enumerate(words) if word == '--params-file']:
+        values.update(yaml.safe_load(Path(words[i + 1]).read_text())['/**']['ros__parameters'])
+    assert values == {'quoted': ["'2'", "'5'"], 'numbers': [1, 2], 'text': 'a: b',
+                      'group.flag': True}

@@ -35,12 +35,6 @@ class Action(LaunchDescriptionEntity):
                 predicate_expression=parser.parse_substitution(unless_text))
         return Action, kwargs
 
-    @classmethod
-    def parse_condition(cls, entity: Entity) -> dict[str, Any]:
-        """Only the `if` / `unless` keyword argument (this workspace's older spelling)."""
-        from launch.frontend.parser import Parser
-        return Action.parse(entity, Parser())[1]
-
     @property
     def condition(self) -> Condition | None:
         return self.__condition

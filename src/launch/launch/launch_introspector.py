@@ -6,7 +6,6 @@ from typing import Any
 
 from launch.action import Action
 from launch.launch_description import LaunchDescription
-from launch.substitution import describe
 from launch.utilities import normalize_to_list_of_substitutions
 
 _STEP = '    '
@@ -34,8 +33,10 @@ def _tree(lines: list[str]) -> list[str]:
     return result
 
 
-def _substitutions(value: Any) -> str:
-    return describe(normalize_to_list_of_substitutions(value))
+def format_substitutions(substitutions: Any) -> str:
+    """Substitutions as `describe()` shows them, joined (upstream's name)."""
+    return ' + '.join(sub.describe() for sub in normalize_to_list_of_substitutions(
+        substitutions))
 
 
 def _format_entities(entities: list[Any]) -> list[str]:
@@ -51,15 +52,15 @@ def _format_entities(entities: list[Any]) -> list[str]:
 def _format_action(action: Action) -> list[str]:
     from launch.actions import EmitEvent, ExecuteProcess, LogInfo, RegisterEventHandler
     if isinstance(action, LogInfo):
-        return [f'LogInfo({describe(action.msg)})']
+        return [f'LogInfo({format_substitutions(action.msg)})']
     if isinstance(action, EmitEvent):
         return [f"EmitEvent(event='{action.event.name}')"]
     if isinstance(action, ExecuteProcess):
-        cwd = 'None' if action.cwd is None else f"'{describe(action.cwd)}'"
+        cwd = 'None' if action.cwd is None else f"'{format_substitutions(action.cwd)}'"
         env = 'None' if action.env is None else '{' + ', '.join(
-            f'{_substitutions(k)}: {_substitutions(v)}' for k, v in action.env
+            f'{format_substitutions(k)}: {format_substitutions(v)}' for k, v in action.env
         ) + '}'
-        cmd = ', '.join(describe(part) for part in action.cmd)
+        cmd = ', '.join(format_substitutions(part) for part in action.cmd)
         return [f'ExecuteProcess(cmd=[{cmd}], cwd={cwd}, env={env}, shell={action.shell})']
     if isinstance(action, RegisterEventHandler):
         text, entities = action.event_handler.describe()

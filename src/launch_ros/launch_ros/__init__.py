@@ -1,9 +1,5 @@
 """launch_ros: ROS 2 actions, descriptions and substitutions for launch (upstream's modules)."""
 
-import os
-
-from launch._missing import module_getattr
-
 from launch_ros import (  # noqa: F401
     actions,
     descriptions,
@@ -13,5 +9,3 @@ from launch_ros import (  # noqa: F401
     substitutions,
     utilities,
 )
-
-__getattr__ = module_getattr(__name__, os.path.dirname(__file__))

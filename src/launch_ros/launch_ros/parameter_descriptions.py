@@ -16,17 +16,15 @@ from tempfile import NamedTemporaryFile
 from typing import Any
 
 import yaml
+from launch.frontend.parse_substitution import parse_substitution
+from launch.some_substitutions_type import SomeSubstitutionsType_types_tuple
 from launch.substitutions import SubstitutionFailure
-
-from launch_ros._launch_api import (
-    SOME_SUBSTITUTIONS_TYPES,
+from launch.utilities import (
     ensure_argument_type,
     normalize_to_list_of_substitutions,
-    normalize_typed_substitution,
-    parse_substitution,
     perform_substitutions,
-    perform_typed_substitution,
 )
+from launch.utilities.type_utils import normalize_typed_substitution, perform_typed_substitution
 
 
 class ParameterValue:
@@ -58,7 +56,7 @@ class Parameter:
     """A named parameter, given to a node as `-p name:=value`."""
 
     def __init__(self, name: Any, value: Any, *, value_type: Any = None) -> None:
-        ensure_argument_type(name, SOME_SUBSTITUTIONS_TYPES, 'name', 'Parameter')
+        ensure_argument_type(name, SomeSubstitutionsType_types_tuple, 'name', 'Parameter')
         self.__name = normalize_to_list_of_substitutions(name)
         self.__value = ParameterValue(value, value_type=value_type)
         self.__evaluated: tuple[str, Any] | None = None
@@ -93,9 +91,9 @@ class ParameterFile:
     def __init__(self, param_file: Any, *, allow_substs: Any = False) -> None:
         self.__evaluated: Path | None = None
         self.__temporary = False  # set before any check: __del__ runs even if __init__ raises
-        ensure_argument_type(param_file, (*SOME_SUBSTITUTIONS_TYPES, os.PathLike,
+        ensure_argument_type(param_file, (*SomeSubstitutionsType_types_tuple, os.PathLike,
                                           bytes), 'param_file', 'ParameterFile()')
-        ensure_argument_type(allow_substs, (bool, *SOME_SUBSTITUTIONS_TYPES),
+        ensure_argument_type(allow_substs, (bool, *SomeSubstitutionsType_types_tuple),
                              'allow_substs', 'ParameterFile()')
         # A path stays a path; text and substitutions are performed when evaluated.
         self.__param_file = (param_file if isinstance(param_file, (os.PathLike, bytes))

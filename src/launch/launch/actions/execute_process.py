@@ -119,14 +119,6 @@ class ExecuteProcess(ExecuteLocal):
                     e.assert_entity_completely_parsed()
         return cls, kwargs
 
-    @classmethod
-    def parse_process_options(cls, entity: Entity) -> dict[str, Any]:
-        """The process attributes of a tag (this workspace's older spelling of parse())."""
-        from launch.frontend.parser import Parser
-        # ExecuteProcess's own parse, whatever a subclass's parse() takes.
-        _, kwargs = ExecuteProcess.parse.__func__(cls, entity, Parser(), ignore=['cmd', 'name'])
-        return kwargs
-
     @property
     def name(self) -> Any:
         description = self.process_description

@@ -9,8 +9,8 @@ launch_yaml, found through the `launch.frontend.parser` entry point group.
 from launch.frontend import type_utils
 from launch.frontend.entity import Entity, FrontendError
 from launch.frontend.expose import expose_action, expose_substitution
-from launch.frontend.parse_substitution import parse_substitutions, split_command_line
+from launch.frontend.parse_substitution import parse_substitution
 from launch.frontend.parser import Parser
 
 __all__ = ['Entity', 'FrontendError', 'Parser', 'expose_action', 'expose_substitution',
-           'parse_substitutions', 'split_command_line', 'type_utils']
+           'parse_substitution', 'type_utils']

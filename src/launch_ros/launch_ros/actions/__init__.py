@@ -1,9 +1,5 @@
 """launch_ros.actions: Node and the actions that scope ROS settings (upstream's modules)."""
 
-import os
-
-from launch._missing import module_getattr
-
 from launch_ros.actions.composable_node_container import ComposableNodeContainer
 from launch_ros.actions.lifecycle_node import LifecycleNode
 from launch_ros.actions.lifecycle_transition import LifecycleTransition
@@ -32,5 +28,3 @@ __all__ = [
     'SetRemap',
     'SetUseSimTime',
 ]
-
-__getattr__ = module_getattr(__name__, os.path.dirname(__file__))

@@ -11,7 +11,7 @@ from launch.action import Action
 from launch.actions import OpaqueFunction
 from launch.event_handler import EventHandler
 from launch.logging import get_logger
-from launch.substitution import SomeSubstitutionsType
+from launch.some_substitutions_type import SomeSubstitutionsType
 
 from launch_ros.actions.node import Node
 from launch_ros.events.lifecycle import ChangeState, StateTransition

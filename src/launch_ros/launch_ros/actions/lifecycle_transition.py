@@ -11,11 +11,8 @@ from launch.actions import EmitEvent, OpaqueFunction, RegisterEventHandler
 from launch.event import Event
 from launch.event_handler import EventHandler
 from launch.logging import get_logger
-from launch.substitution import (
-    SomeSubstitutionsType,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
+from launch.some_substitutions_type import SomeSubstitutionsType
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 from lifecycle_msgs.msg import Transition
 
 from launch_ros.event_handlers import OnStateTransition

@@ -12,8 +12,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
+from launch.utilities import perform_substitutions
 
-from launch_ros._launch_api import perform_substitutions
 from launch_ros.descriptions import ComposableNode, ParameterFile
 from launch_ros.utilities import (
     evaluate_parameters,

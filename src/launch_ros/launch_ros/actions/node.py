@@ -19,12 +19,12 @@ from launch.actions import ExecuteProcess
 from launch.frontend import expose_action
 from launch.logging import get_logger
 from launch.substitutions import LocalSubstitution
-
-from launch_ros._launch_api import (
+from launch.utilities import (
     ensure_argument_type,
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
+
 from launch_ros.parameter_descriptions import Parameter, ParameterFile, ParameterValue
 from launch_ros.substitutions import ExecutableInPackage
 from launch_ros.utilities import (
@@ -43,46 +43,6 @@ if TYPE_CHECKING:
 
 _NAME = re.compile(r'^[A-Za-z_][A-Za-z0-9_]*$')
 _NAMESPACE = re.compile(r'^(/[A-Za-z_][A-Za-z0-9_]*)*$|^/$')
-
-
-_TYPES = {'str': str, 'int': int, 'float': float, 'bool': bool, 'list_of_str': list[str],
-          'list_of_int': list[int], 'list_of_float': list[float], 'list_of_bool': list[bool]}
-
-
-def _parameter_value(param: Entity, parser: Parser) -> ParameterValue:
-    """A <param value=...> as a ParameterValue: typed values (YAML launch files) as they are,
-    text with its substitutions, `value-sep` splitting text into a list, `type` its type."""
-    from launch.frontend import FrontendError
-    type_name = param.get('type')
-    if type_name is not None and type_name not in _TYPES:
-        raise FrontendError(f"<param type='{type_name}'> is not one of "
-                            f"{', '.join(sorted(_TYPES))}")
-    value_type = None if type_name is None else _TYPES[type_name]
-    if hasattr(param, 'get_attr'):
-        # launch's upstream Entity API reads value-sep and types the value itself.
-        value = param.get_attr('value', data_type=value_type, optional=True)
-    else:
-        value = param.get('value')
-        separator = param.get('value-sep')
-        if isinstance(value, str) and separator:
-            value = [_yaml_scalar(item) if value_type is None else item
-                     for item in value.split(separator)]
-    if isinstance(value, list):
-        value = [parser.parse_substitution(item) if isinstance(item, str) and '$(' in item
-                 else item for item in value]
-        return ParameterValue(value, value_type=value_type)
-    if isinstance(value, str):
-        return ParameterValue(parser.parse_substitution(value), value_type=value_type)
-    return ParameterValue(value, value_type=value_type)
-
-
-def _yaml_scalar(text: str) -> Any:
-    """An item of a value-sep list read as YAML, kept as text if it is no scalar."""
-    try:
-        loaded = yaml.safe_load(text)
-    except yaml.YAMLError:
-        return text
-    return loaded if isinstance(loaded, (bool, int, float, str)) else text
 
 
 def _validate(name: str | None, namespace: str | None) -> None:
@@ -104,39 +64,49 @@ class Node(ExecuteProcess):
     def parse_nested_parameters(params: list[Entity], parser: Parser) -> list[Any]:
         """<param> tags as Node's `parameters`: a file per `from`, a dict per `name` (nested
         <param>s make nested dicts)."""
-        from launch.frontend import FrontendError
+        from launch.frontend import Entity, FrontendError
+        from launch.frontend.type_utils import get_data_type_from_identifier
 
         def nested(entities: list[Entity]) -> dict[Any, Any]:
             result: dict[Any, Any] = {}
             for param in entities:
-                name = tuple(parser.parse_substitution(param.get('name', required=True)))
-                children = param.children_of('param')
-                value = param.get('value')
-                if children and (value is not None or param.get('type') is not None):
-                    raise FrontendError(f"<param name='{param.get('name')}'>: nested <param>s "
+                text = param.get_attr('name')
+                name = tuple(parser.parse_substitution(text))
+                type_identifier = param.get_attr('type', data_type=None, optional=True)
+                data_type = (None if type_identifier is None
+                             else get_data_type_from_identifier(type_identifier))
+                value = param.get_attr('value', data_type=data_type, optional=True)
+                children = param.get_attr('param', data_type=list[Entity], optional=True)
+                param.assert_entity_completely_parsed()
+                if children and (value is not None or data_type is not None):
+                    raise FrontendError(f"<param name='{text}'>: nested <param>s "
                                         'and a value or type are mutually exclusive')
                 if children:
                     result[name] = nested(children)
                 elif value is None:
-                    raise FrontendError(f"<param name='{param.get('name')}'> needs a value "
+                    raise FrontendError(f"<param name='{text}'> needs a value "
                                         'attribute or nested <param>s')
                 else:
-                    result[name] = _parameter_value(param, parser)
-                param.check_all_used()
+                    result[name] = ParameterValue(parser.parse_if_substitutions(value),
+                                                  value_type=data_type)
             return result
 
         parameters: list[Any] = []
         for param in params:
-            if param.get('from') is not None:
-                if param.get('name') is not None:
-                    raise FrontendError("<param>: 'name' and 'from' are mutually exclusive")
-                allow = param.get('allow_substs')
+            source = param.get_attr('from', optional=True)
+            allow = param.get_attr('allow_substs', data_type=bool, optional=True)
+            name = param.get_attr('name', optional=True)
+            if source is not None and name is not None:
+                raise FrontendError("<param>: 'name' and 'from' are mutually exclusive")
+            if source is not None:
+                param.assert_entity_completely_parsed()
                 parameters.append(ParameterFile(
-                    param.get_substitutions('from'),
-                    allow_substs=False if allow is None else allow if isinstance(allow, bool)
-                    else parser.parse_substitution(allow)))
-                param.check_all_used()
-            elif param.get('name') is not None:
+                    parser.parse_substitution(source),
+                    allow_substs=parser.parse_substitution(allow) if isinstance(allow, str)
+                    else bool(allow)))
+            elif name is not None:
+                if allow is not None:
+                    raise FrontendError("<param>: 'allow_substs' goes only with 'from'")
                 parameters.append(nested([param]))
             else:
                 raise FrontendError("<param> needs a 'name' or a 'from' attribute")
@@ -144,24 +114,30 @@ class Node(ExecuteProcess):
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        parameters = cls.parse_nested_parameters(entity.children_of('param'), parser)
-        remappings = []
-        for child in entity.children_of('remap'):
-            remappings.append((child.get_substitutions('from', True),
-                               child.get_substitutions('to', True)))
-            child.check_all_used()
-        namespace = entity.get('namespace', entity.get('ns'))
-        kwargs = {'package': entity.get_substitutions('pkg'),
-                  'executable': entity.get_substitutions('exec', True),
-                  'name': entity.get_substitutions('name'),
-                  'namespace': None if namespace is None else parser.parse_substitution(namespace),
-                  'exec_name': entity.get_substitutions('exec_name'),
-                  'arguments': entity.get_words('args'),
-                  'ros_arguments': entity.get_words('ros_args'),
-                  'parameters': parameters or None, 'remappings': remappings or None}
-        # ExecuteProcess reads the process options (output, env, respawn, ...), as for any
-        # process tag.
-        return cls, {**kwargs, **ExecuteProcess.parse_process_options(entity)}
+        from launch.frontend import Entity
+        # ExecuteProcess reads the process options (name, output, env, respawn, ...).
+        _, kwargs = super().parse(entity, parser, ignore=['cmd'])
+        for key, attribute in (('arguments', 'args'), ('ros_arguments', 'ros_args')):
+            words = entity.get_attr(attribute, optional=True)
+            if words is not None:
+                kwargs[key] = cls._parse_cmdline(words, parser)
+        for key, attribute in (('exec_name', 'exec_name'), ('package', 'pkg'),
+                               ('namespace', 'namespace')):
+            value = entity.get_attr(attribute, optional=True)
+            if value is not None:
+                kwargs[key] = parser.parse_substitution(value)
+        kwargs['executable'] = parser.parse_substitution(entity.get_attr('exec'))
+        remappings = entity.get_attr('remap', data_type=list[Entity], optional=True)
+        if remappings is not None:
+            kwargs['remappings'] = [(parser.parse_substitution(remap.get_attr('from')),
+                                     parser.parse_substitution(remap.get_attr('to')))
+                                    for remap in remappings]
+            for remap in remappings:
+                remap.assert_entity_completely_parsed()
+        parameters = entity.get_attr('param', data_type=list[Entity], optional=True)
+        if parameters is not None:
+            kwargs['parameters'] = cls.parse_nested_parameters(parameters, parser)
+        return cls, kwargs
 
     def __init__(self, *, executable: Any, package: Any = None, name: Any = None,
                  namespace: Any = None, exec_name: Any = None, parameters: Any = None,

@@ -7,8 +7,8 @@ from typing import TYPE_CHECKING, Any
 from launch.action import Action
 from launch.frontend import expose_action
 from launch.substitutions import SubstitutionFailure
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
-from launch_ros._launch_api import normalize_to_list_of_substitutions, perform_substitutions
 from launch_ros.actions.node import _validate
 from launch_ros.utilities import make_namespace_absolute, prefix_namespace
 
@@ -22,8 +22,9 @@ if TYPE_CHECKING:
 class PushROSNamespace(Action):
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        kwargs = {'namespace': entity.get_substitutions('namespace', True)}
-        return cls, {**kwargs, **cls.parse_condition(entity)}
+        _, kwargs = super().parse(entity, parser)
+        kwargs['namespace'] = parser.parse_substitution(entity.get_attr('namespace'))
+        return cls, kwargs
 
     def __init__(self, namespace: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)

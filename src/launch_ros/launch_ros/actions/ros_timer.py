@@ -11,12 +11,9 @@ from launch.event_handler import EventHandler
 from launch.event_handlers import OnShutdown
 from launch.events import TimerEvent
 from launch.frontend import expose_action
+from launch.utilities import ensure_argument_type
+from launch.utilities.type_utils import normalize_typed_substitution, perform_typed_substitution
 
-from launch_ros._launch_api import (
-    ensure_argument_type,
-    normalize_typed_substitution,
-    perform_typed_substitution,
-)
 from launch_ros.ros_adapters import get_ros_node
 
 if TYPE_CHECKING:
@@ -28,9 +25,8 @@ if TYPE_CHECKING:
 class ROSTimer(TimerAction):
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        kwargs = {'period': entity.get_substitutions('period', True),
-                  'actions': parser.parse_children(entity)}
-        return cls, {**kwargs, **cls.parse_condition(entity)}
+        # TimerAction reads the period and the nested actions.
+        return cls, super().parse(entity, parser)[1]
 
     def __init__(self, *, period: Any, actions: Iterable[Any], **kwargs: Any) -> None:
         ensure_argument_type(period, (float, int, str, list, tuple, *_substitution_types()),
@@ -74,9 +70,16 @@ class ROSTimer(TimerAction):
                 context.emit_event_sync(TimerEvent(timer_action=self))
                 self.cancel()
 
-        # The ROS timer ticks on the adapter's thread: hand the firing to the launch's loop.
-        self.__timer = get_ros_node(context).create_timer(
-            period, lambda: loop.call_soon_threadsafe(fire))
+        def start() -> None:
+            # The ROS timer ticks on the adapter's thread: hand the firing to the launch's loop.
+            if self.__future is not None and not self.__future.done():
+                self.__timer = get_ros_node(context).create_timer(
+                    period, lambda: loop.call_soon_threadsafe(fire))
+
+        # Made once the actions after this one have run, as upstream does in a task: a
+        # SetUseSimTime later in the same description then switches the clock first (a timer
+        # made on system time restarts its period at the first /clock jump).
+        loop.call_soon(start)
         return None
 
 

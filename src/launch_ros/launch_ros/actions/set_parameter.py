@@ -6,8 +6,8 @@ from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
 from launch.frontend import expose_action
+from launch.utilities import normalize_to_list_of_substitutions
 
-from launch_ros._launch_api import normalize_to_list_of_substitutions
 from launch_ros.utilities import evaluate_parameter_dict, normalize_parameter_dict
 
 if TYPE_CHECKING:
@@ -24,9 +24,10 @@ def append_configuration(context: Any, key: str, *items: Any) -> None:
 class SetParameter(Action):
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        kwargs = {'name': entity.get('name', required=True),
-                  'value': entity.get_substitutions('value', True)}
-        return cls, {**kwargs, **cls.parse_condition(entity)}
+        _, kwargs = super().parse(entity, parser)
+        kwargs['name'] = parser.parse_substitution(entity.get_attr('name'))
+        kwargs['value'] = parser.parse_substitution(entity.get_attr('value'))
+        return cls, kwargs
 
     def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)

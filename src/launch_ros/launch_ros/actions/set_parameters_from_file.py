@@ -6,8 +6,8 @@ from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
 from launch.frontend import expose_action
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
-from launch_ros._launch_api import normalize_to_list_of_substitutions, perform_substitutions
 from launch_ros.actions.set_parameter import append_configuration
 
 if TYPE_CHECKING:
@@ -19,8 +19,9 @@ if TYPE_CHECKING:
 class SetParametersFromFile(Action):
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        kwargs = {'filename': entity.get_substitutions('filename', True)}
-        return cls, {**kwargs, **cls.parse_condition(entity)}
+        _, kwargs = super().parse(entity, parser)
+        kwargs['filename'] = parser.parse_substitution(entity.get_attr('filename'))
+        return cls, kwargs
 
     def __init__(self, filename: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)

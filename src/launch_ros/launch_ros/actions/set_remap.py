@@ -6,8 +6,8 @@ from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
 from launch.frontend import expose_action
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
-from launch_ros._launch_api import normalize_to_list_of_substitutions, perform_substitutions
 from launch_ros.actions.set_parameter import append_configuration
 
 if TYPE_CHECKING:
@@ -19,9 +19,10 @@ if TYPE_CHECKING:
 class SetRemap(Action):
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        kwargs = {'src': entity.get_substitutions('from', True),
-                  'dst': entity.get_substitutions('to', True)}
-        return cls, {**kwargs, **cls.parse_condition(entity)}
+        _, kwargs = super().parse(entity, parser)
+        kwargs['src'] = parser.parse_substitution(entity.get_attr('from'))
+        kwargs['dst'] = parser.parse_substitution(entity.get_attr('to'))
+        return cls, kwargs
 
     def __init__(self, src: Any, dst: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)

@@ -8,8 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
 from launch.frontend import expose_action
-
-from launch_ros._launch_api import normalize_to_list_of_substitutions, perform_substitutions
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser
@@ -28,8 +27,9 @@ def _current_log_dir() -> str:
 class SetROSLogDir(Action):
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        kwargs = {'new_log_dir': entity.get_substitutions('new_log_dir', True)}
-        return cls, {**kwargs, **cls.parse_condition(entity)}
+        _, kwargs = super().parse(entity, parser)
+        kwargs['new_log_dir'] = parser.parse_substitution(entity.get_attr('new_log_dir'))
+        return cls, kwargs
 
     def __init__(self, new_log_dir: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)

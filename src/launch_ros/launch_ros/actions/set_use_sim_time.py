@@ -6,9 +6,9 @@ from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
 from launch.frontend import expose_action
+from launch.utilities.type_utils import perform_typed_substitution
 from rclpy.parameter import Parameter
 
-from launch_ros._launch_api import perform_typed_substitution
 from launch_ros.ros_adapters import get_ros_node
 
 if TYPE_CHECKING:
@@ -20,8 +20,9 @@ if TYPE_CHECKING:
 class SetUseSimTime(Action):
     @classmethod
     def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
-        kwargs = {'value': entity.get_substitutions('value', True)}
-        return cls, {**kwargs, **cls.parse_condition(entity)}
+        _, kwargs = super().parse(entity, parser)
+        kwargs['value'] = parser.parse_substitution(entity.get_attr('value'))
+        return cls, kwargs
 
     def __init__(self, value: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)

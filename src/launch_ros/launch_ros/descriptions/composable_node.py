@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from launch_ros._launch_api import normalize_to_list_of_substitutions
+from launch.utilities import normalize_to_list_of_substitutions
+
 from launch_ros.utilities import normalize_parameters, normalize_remap_rules
 
 

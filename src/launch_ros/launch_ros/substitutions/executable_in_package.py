@@ -6,14 +6,11 @@ import os
 from typing import TYPE_CHECKING, Any
 
 from launch.frontend import expose_substitution
+from launch.launch_introspector import format_substitutions
 from launch.substitutions import SubstitutionFailure
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 from launch import SomeSubstitutionsType, Substitution
-from launch_ros._launch_api import (
-    describe,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
 from launch_ros.substitutions.find_package import FindPackagePrefix
 
 if TYPE_CHECKING:
@@ -44,4 +41,5 @@ class ExecutableInPackage(FindPackagePrefix):
         return path
 
     def describe(self) -> str:
-        return f'ExecInPkg(pkg={describe(self.package)}, exec={describe(self.executable)})'
+        return (f'ExecInPkg(pkg={format_substitutions(self.package)}, '
+                f'exec={format_substitutions(self.executable)})')

@@ -5,13 +5,10 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from launch.frontend import expose_substitution
+from launch.launch_introspector import format_substitutions
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 from launch import SomeSubstitutionsType, Substitution
-from launch_ros._launch_api import (
-    describe,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
@@ -42,7 +39,7 @@ class FindPackagePrefix(Substitution):
         return self.find(perform_substitutions(context, self.package))
 
     def describe(self) -> str:
-        return f'Pkg(pkg={describe(self.package)})'
+        return f'Pkg(pkg={format_substitutions(self.package)})'
 
 
 @expose_substitution('find-pkg-share')

@@ -5,14 +5,11 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from launch.frontend import expose_substitution
+from launch.launch_introspector import format_substitutions
 from launch.substitutions import SubstitutionFailure
+from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 from launch import Substitution
-from launch_ros._launch_api import (
-    describe,
-    normalize_to_list_of_substitutions,
-    perform_substitutions,
-)
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
@@ -43,7 +40,7 @@ class Parameter(Substitution):
         return self.__default
 
     def describe(self) -> str:
-        return f'Parameter(name={describe(self.__name)})'
+        return f'Parameter(name={format_substitutions(self.__name)})'
 
     def perform(self, context: LaunchContext) -> str:
         name = perform_substitutions(context, self.__name)

@@ -12,8 +12,8 @@ from typing import Any
 
 import yaml
 from launch.substitution import Substitution
+from launch.utilities import ensure_argument_type, perform_substitutions
 
-from launch_ros._launch_api import ensure_argument_type, perform_substitutions
 from launch_ros.parameter_descriptions import Parameter, ParameterFile, ParameterValue
 
 _AS_TEXT = ('If the parameter is meant to be a string, try wrapping it in '

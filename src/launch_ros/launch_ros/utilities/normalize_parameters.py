@@ -15,21 +15,18 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 import yaml
+from launch.some_substitutions_type import SomeSubstitutionsType_types_tuple
 from launch.substitution import Substitution
 from launch.substitutions import TextSubstitution
+from launch.utilities import ensure_argument_type, normalize_to_list_of_substitutions
 
-from launch_ros._launch_api import (
-    SOME_SUBSTITUTIONS_TYPES,
-    ensure_argument_type,
-    normalize_to_list_of_substitutions,
-)
 from launch_ros.parameter_descriptions import Parameter, ParameterFile, ParameterValue
 
 
 def _normalize_list(value: Sequence[Any]) -> tuple[Any, ...]:
     kinds = set()
     for item in value:
-        ensure_argument_type(item, (float, int, str, bool, *SOME_SUBSTITUTIONS_TYPES),
+        ensure_argument_type(item, (float, int, str, bool, *SomeSubstitutionsType_types_tuple),
                              'subvalue')
         if isinstance(item, Substitution):
             kinds.add(Substitution)
@@ -59,7 +56,7 @@ def normalize_parameter_dict(parameters: Mapping[Any, Any], *,
         raise TypeError('expected dict')
     normalized: dict[tuple[Any, ...], Any] = {}
     for name, value in parameters.items():
-        ensure_argument_type(name, (*SOME_SUBSTITUTIONS_TYPES, tuple, list),
+        ensure_argument_type(name, (*SomeSubstitutionsType_types_tuple, tuple, list),
                              'parameter name')
         name = normalize_to_list_of_substitutions(name)
         if _prefix:

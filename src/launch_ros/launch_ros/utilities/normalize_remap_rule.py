@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 from typing import Any
 
-from launch_ros._launch_api import ensure_argument_type, normalize_to_list_of_substitutions
+from launch.utilities import ensure_argument_type, normalize_to_list_of_substitutions
 
 RemapRule = tuple[tuple[Any, ...], tuple[Any, ...]]
 
