@@ -17,6 +17,8 @@ from rclpy.node import Node
 
 LIFECYCLE_NODE = 'lc_talker'
 SECONDS_BETWEEN_CHANGES = 10.0
+TRANSITION_EVENTS = f'/{LIFECYCLE_NODE}/transition_event'
+LISTENER_WAIT = 5.0
 SCRIPT = (Transition.TRANSITION_CONFIGURE, Transition.TRANSITION_ACTIVATE,
           Transition.TRANSITION_DEACTIVATE, Transition.TRANSITION_ACTIVATE,
           Transition.TRANSITION_DEACTIVATE, Transition.TRANSITION_CLEANUP,
@@ -71,7 +73,18 @@ class LifecycleServiceClient(Node):
         self.get_logger().info(f'Transition {transition} successfully triggered.')
         return True
 
+    def wait_for_listeners(self, timeout: float = LISTENER_WAIT) -> None:
+        """Give subscribers of lc_talker's transition events (lc_listener) up to `timeout`
+        to be discovered, so that the first transition's event is not sent before they match
+        (started together by the demo's launch file, the listener could miss it on a loaded
+        machine; without listeners this only delays the first transition)."""
+        deadline = time.monotonic() + timeout
+        while (self.count_subscribers(TRANSITION_EVENTS) == 0 and time.monotonic() < deadline
+               and not self._stop.is_set()):
+            self._executor.spin_once(timeout_sec=0.1)
+
     def run_script(self) -> None:
+        self.wait_for_listeners()
         for index, transition in enumerate(SCRIPT):
             if index and self._stop.wait(SECONDS_BETWEEN_CHANGES):
                 return
