@@ -93,8 +93,11 @@ def test_rviz_page_shows_the_turtle_frames_moving(tmp_path: Path) -> None:
                     page.wait_for_function(
                         '() => window.rviz && window.rviz.ready && window.rviz.frames.turtle2'
                         ' && !window.rviz.frames.turtle2.error', timeout=40000)
-                    first = page.evaluate('window.rviz.frames.turtle2.translation')
-                    page.wait_for_timeout(2000)
+                    # It drives: away from where the demo spawns it (4, 2), towards turtle1
+                    # (asserted below).
+                    page.wait_for_function(
+                        '() => Math.hypot(window.rviz.frames.turtle2.translation[0] - 4,'
+                        ' window.rviz.frames.turtle2.translation[1] - 2) > 0.5', timeout=10000)
                     state = page.evaluate('window.rviz')
                     projected = page.evaluate('[window.rviz.project(0, 0, 0), window.rviz.project('
                                               '...window.rviz.frames.turtle1.translation)]')
@@ -117,7 +120,8 @@ def test_rviz_page_shows_the_turtle_frames_moving(tmp_path: Path) -> None:
     assert state['status']['TF'] == 'OK', state['status']
     turtle1 = state['frames']['turtle1']['translation']
     assert turtle1[:2] == pytest.approx([5.544445, 5.544445], abs=0.01)
-    assert math.dist(first, state['frames']['turtle2']['translation']) > 0.1  # it drives
+    # Sampling it twice instead could find it arrived already, on a machine slow to load the page.
+    assert math.dist([4.0, 2.0], state['frames']['turtle2']['translation'][:2]) > 0.5
     assert {p['fixed_frame'] for p in in_turtle1.values()} == {'turtle1'}
     assert in_turtle1['world']['translation'][:2] == pytest.approx([-5.544445, -5.544445],
                                                                    abs=0.01)
