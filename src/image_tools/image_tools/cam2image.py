@@ -11,16 +11,13 @@ from __future__ import annotations
 import sys
 
 import numpy as np
-from node_runtime.spinning import ros_session, spin_until_stopped
-from rclpy.exceptions import InvalidParameterTypeException
-from rclpy.logging import get_logger
 from rclpy.node import Node
 from rclpy.qos import qos_profile_sensor_data
 from sensor_msgs.msg import Image
 from std_msgs.msg import Bool
 
 from image_tools.burger import Burger
-from image_tools.qos import BadParameter, declare_qos, wants_help, web_view
+from image_tools.qos import BadParameter, declare_qos, run_node, web_view
 
 USAGE = """Usage: cam2image [-h] [--ros-args [-p param:=value] ...]
 Publish images from a camera stream.
@@ -89,17 +86,8 @@ class Cam2Image(Node):
 
 
 def main() -> int:
-    if wants_help(USAGE):
-        return 0
-    with ros_session() as stop:
-        try:
-            node = Cam2Image()
-        # BadParameter, a burger that does not fit, or a value of the wrong type
-        except (ValueError, InvalidParameterTypeException) as error:
-            get_logger('cam2image').error(str(error))
-            return 1
-        spin_until_stopped(node, stop)
-    return 0
+    # BadParameter, a burger that does not fit (ValueError both)
+    return run_node(Cam2Image, 'cam2image', USAGE, (ValueError,))
 
 
 if __name__ == '__main__':

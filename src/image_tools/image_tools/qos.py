@@ -1,4 +1,4 @@
-"""What cam2image and showimage share: their QoS parameters and the web view of a topic."""
+"""What cam2image and showimage share: their QoS parameters, the web view of a topic, main()."""
 
 from __future__ import annotations
 
@@ -7,10 +7,15 @@ import re
 import sys
 import tempfile
 import urllib.parse
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from node_runtime.spinning import ros_session, spin_until_stopped
 from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.exceptions import InvalidParameterTypeException
+from rclpy.logging import get_logger
+from rclpy.node import Node
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 RELIABILITY = {'reliable': ReliabilityPolicy.RELIABLE,
@@ -50,6 +55,23 @@ def wants_help(usage: str) -> bool:
         print(usage)
         return True
     return False
+
+
+def run_node(make_node: Callable[[], Node], name: str, usage: str,
+             refused: tuple[type[Exception], ...]) -> int:
+    """main() of an image_tools node: its usage on -h, one logged line and exit 1 for a
+    setting it refuses (`refused`, or a parameter value of the wrong type), else spin until
+    Ctrl-C."""
+    if wants_help(usage):
+        return 0
+    with ros_session() as stop:
+        try:
+            node = make_node()
+        except (*refused, InvalidParameterTypeException) as error:
+            get_logger(name).error(str(error))
+            return 1
+        spin_until_stopped(node, stop)
+    return 0
 
 
 def web_view(window: str, topic: str, qos: QoSProfile) -> str:

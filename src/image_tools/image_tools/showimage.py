@@ -6,13 +6,10 @@ from __future__ import annotations
 
 import sys
 
-from node_runtime.spinning import ros_session, spin_until_stopped
-from rclpy.exceptions import InvalidParameterTypeException
-from rclpy.logging import get_logger
 from rclpy.node import Node
 from sensor_msgs.msg import Image
 
-from image_tools.qos import BadParameter, declare_qos, wants_help, web_view
+from image_tools.qos import BadParameter, declare_qos, run_node, web_view
 
 USAGE = """Usage: showimage [-h] [--ros-args [-p param:=value] ...]
 Subscribe to an image topic and show the images.
@@ -49,16 +46,7 @@ class ShowImage(Node):
 
 
 def main() -> int:
-    if wants_help(USAGE):
-        return 0
-    with ros_session() as stop:
-        try:
-            node = ShowImage()
-        except (BadParameter, InvalidParameterTypeException) as error:
-            get_logger('showimage').error(str(error))
-            return 1
-        spin_until_stopped(node, stop)
-    return 0
+    return run_node(ShowImage, 'showimage', USAGE, (BadParameter,))
 
 
 if __name__ == '__main__':
