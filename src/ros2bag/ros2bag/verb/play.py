@@ -71,22 +71,6 @@ def _validate(args: argparse.Namespace) -> str | None:
     return None
 
 
-
-
-def _validate(args: argparse.Namespace) -> str | None:
-    if not args.rate > 0.0:
-        return f'--rate must be greater than 0.0, got {args.rate:g}'
-    if args.delay < 0.0:
-        return f'--delay must be 0 or positive, got {args.delay:g}'
-    if args.start_offset < 0.0:
-        return f'--start-offset must be 0 or positive, got {args.start_offset:g}'
-    for pair in args.remap:
-        old, sep, new = pair.partition(':=')
-        if not sep or not old or not new:
-            return f"--remap: '{pair}' is not old_topic:=new_topic"
-    return None
-
-
 def play_options(args: argparse.Namespace):
     """(StorageOptions, PlayOptions) of `play`/`burst` arguments, or the error line."""
     from rosbag2_py import PlayOptions, ServiceRequestsSource, StorageOptions
