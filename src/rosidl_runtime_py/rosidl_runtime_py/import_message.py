@@ -21,6 +21,11 @@ def import_message_from_namespaced_type(message_type: NamespacedType) -> Any:
         message_type = message_type.value_type
         warnings.warn('Passing objects containing a NamespacedType is deprecated, please pass '
                       'a NamespacedType object directly', DeprecationWarning, stacklevel=2)
+    parts = [*message_type.namespaces, message_type.name]
+    if not all(part.isidentifier() for part in parts):
+        # Else importlib's own error: a TypeError for '..' (a relative import), for instance.
+        raise ValueError(f"'{'/'.join(parts)}' is not an interface type: expected "
+                         '<package>/<msg|srv|action>/<Name>')
     module = importlib.import_module('.'.join(message_type.namespaces))
     if message_type.name.endswith(FEEDBACK_MESSAGE_SUFFIX):
         # An action's feedback message is not a module attribute but the action's Impl's.
