@@ -7,6 +7,7 @@ In-process, no DDS: these are pure functions of generated message classes.
 from __future__ import annotations
 
 import array
+import re
 import subprocess
 import sys
 from collections import OrderedDict
@@ -135,6 +136,10 @@ def test_interfaces_by_name() -> None:
         utilities.get_service('std_msgs/msg/String')
     with pytest.raises(ModuleNotFoundError):
         utilities.get_message('no_such_pkg/msg/Nothing')
+    for bad in ('../../etc/passwd', 'std_msgs/msg/', 'std msgs/msg/String'):
+        with pytest.raises(ValueError, match=re.escape(
+                'is not an interface type: expected <package>/<msg|srv|action>/<Name>')):
+            utilities.get_interface(bad)
     feedback = NamespacedType(['tf2_msgs', 'action'], 'LookupTransform_FeedbackMessage')
     assert import_message_from_namespaced_type(feedback) is \
         LookupTransform.Impl.FeedbackMessage
