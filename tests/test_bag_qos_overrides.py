@@ -5,6 +5,9 @@ from __future__ import annotations
 import re
 import signal
 
+from rclpy.qos import DurabilityPolicy, QoSProfile
+from std_msgs.msg import String
+
 from support import ros2
 
 DURABILITY_OVERRIDE = """\
@@ -35,10 +38,17 @@ def test_the_page_records_a_latched_topic_and_plays_it_best_effort(launch, ros_e
     recorder.wait_for_output(r'\[rosbag2_recorder\]: Overriding subscription profile for '
                              r'/talker\n')
     recorder.wait_for_output(r"Subscribed to topic '/talker'")
-    # The one message sent before the recorder came is delivered to it as a late joiner.
-    talker.stop()
+    # The one message sent before the recorder came is delivered to it as a late joiner, once
+    # the talker has discovered the recorder's subscription. A transient-local subscription of
+    # the probe made after it has its copy once that discovery has run its course (the talker
+    # stays up meanwhile, as on the page).
+    latched = probe.collect(String, '/talker', QoSProfile(
+        depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
+    probe.spin_until(lambda: latched, 15, "the talker's latched message")
+    probe.spin_for(0.5)
     recorder.popen.send_signal(signal.SIGINT)
     assert recorder.popen.wait(timeout=15) == 0
+    talker.stop()
     info = ros2(ros_env, 'bag', 'info', str(bag))
     assert re.search(r'Topic: /talker \| Type: std_msgs/msg/String \| Count: 1 \|', info.stdout), \
         info
