@@ -29,8 +29,11 @@ def topic_name_problem(name: str) -> str | None:
 
 
 def interface_class(name: str, kind: str) -> Any:
-    getter = {'msg': utilities.get_message, 'srv': utilities.get_service,
-              'action': utilities.get_action}[kind]
+    getters = {'msg': utilities.get_message, 'srv': utilities.get_service,
+               'action': utilities.get_action}
+    if kind not in getters:
+        raise FormError(f"unknown interface kind '{kind}' (allowed: msg, srv, action)")
+    getter = getters[kind]
     try:
         return getter(name)
     except (ImportError, AttributeError, ValueError):
