@@ -85,6 +85,10 @@ def test_no_canvas_png_unless_asked(ros_env, tmp_path, probe):
 
     sim = turtlesim_in(work, 'first.log')
     assert sim.stop() == 0, sim.output
+    # The probe must have seen the first turtlesim leave: a request sent to its lingering graph
+    # entry, before the second one's service matched, was lost (CI's 10 s time-out).
+    probe.spin_until(lambda: '/turtlesim/_save_canvas' not in dict(
+        probe.node.get_service_names_and_types()), 10, 'the first turtlesim to leave the graph')
     assert list(work.iterdir()) == [], 'a file appeared unasked'
     assert 'Canvas written' not in sim.output
     # Asked through the hidden service: written into the working directory.
