@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 from launch.frontend.expose import expose_substitution
 from launch.substitution import Substitution
+from launch.substitutions._operand_pair import OperandPairSubstitution
 from launch.substitutions.substitution_failure import SubstitutionFailure
 from launch.utilities import normalize_to_list_of_substitutions
 from launch.utilities.type_utils import perform_typed_substitution
@@ -52,30 +53,13 @@ class NotSubstitution(Substitution):
         return _text(not _as_bool(context, self.value))
 
 
-class _BinarySubstitution(Substitution):
+class _BinarySubstitution(OperandPairSubstitution):
     _tag = ''
     _combine: Callable[[bool, bool], bool]
 
-    def __init__(self, left: Any, right: Any) -> None:
-        self.__left = normalize_to_list_of_substitutions(left)
-        self.__right = normalize_to_list_of_substitutions(right)
-
     @classmethod
-    def parse(cls, data: Sequence[Any]) -> tuple[type, dict[str, Any]]:
-        if len(data) != 2:
-            raise TypeError(f'{cls._tag} substitution expects 2 arguments')
-        return cls, {'left': data[0], 'right': data[1]}
-
-    @property
-    def left(self) -> list[Substitution]:
-        return self.__left
-
-    @property
-    def right(self) -> list[Substitution]:
-        return self.__right
-
-    def describe(self) -> str:
-        return f'{type(self).__name__}({self.left} {self.right})'
+    def _arity_error(cls) -> str:
+        return f'{cls._tag} substitution expects 2 arguments'
 
     def perform(self, context: LaunchContext) -> str:
         left = _as_bool(context, self.left)

@@ -7,11 +7,11 @@ anything else as text; None is the empty text.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 from launch.frontend.expose import expose_substitution
 from launch.substitution import Substitution
+from launch.substitutions._operand_pair import OperandPairSubstitution
 from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 from launch.utilities.type_utils import is_substitution
 
@@ -49,27 +49,8 @@ def values_equal(left: str, right: str) -> bool:
 
 
 @expose_substitution('equals')
-class EqualsSubstitution(Substitution):
-    def __init__(self, left: Any, right: Any) -> None:
-        self.__left = _normalized(left)
-        self.__right = _normalized(right)
-
-    @classmethod
-    def parse(cls, data: Sequence[Any]) -> tuple[type, dict[str, Any]]:
-        if len(data) != 2:
-            raise TypeError(f'{cls.__name__} expects 2 arguments')
-        return cls, {'left': data[0], 'right': data[1]}
-
-    @property
-    def left(self) -> list[Substitution]:
-        return self.__left
-
-    @property
-    def right(self) -> list[Substitution]:
-        return self.__right
-
-    def describe(self) -> str:
-        return f'{type(self).__name__}({self.left} {self.right})'
+class EqualsSubstitution(OperandPairSubstitution):
+    _operand = staticmethod(_normalized)
 
     def perform(self, context: LaunchContext) -> str:
         equal = values_equal(perform_substitutions(context, self.left),
