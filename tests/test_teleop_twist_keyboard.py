@@ -62,7 +62,11 @@ def velocities(twist: Twist) -> tuple[float, ...]:
 
 def test_keys_publish_twists_on_cmd_vel(terminals, ros_env, probe) -> None:
     twists = probe.collect(Twist, '/cmd_vel')
+    stamped = probe.collect(TwistStamped, '/stamped_cmd_vel')
     teleop = terminals(env=ros_env)
+    # Started alongside: `stamped` publishes TwistStamped in `frame_id`.
+    stamped_teleop = terminals('--ros-args', '-p', 'stamped:=true', '-p', 'frame_id:=base_link',
+                               '-r', 'cmd_vel:=stamped_cmd_vel', env=ros_env)
     teleop.wait_for_output(HELP + '\ncurrently:\tspeed 0.5\tturn 1.0 \n')
     probe.spin_until(lambda: probe.node.count_publishers('/cmd_vel') == 1, 10, 'the publisher')
     probe.spin_for(0.5)  # the teleop's side of the match too (a volatile topic)
@@ -89,6 +93,16 @@ def test_keys_publish_twists_on_cmd_vel(terminals, ros_env, probe) -> None:
     assert velocities(twists[-1]) == (0, 0, 0, 0)
     assert termios.tcgetattr(teleop.slave) == teleop.before
     assert 'Traceback' not in teleop.text
+
+    stamped_teleop.wait_for_output('currently:')
+    probe.spin_until(lambda: probe.node.count_publishers('/stamped_cmd_vel') == 1, 10,
+                     'the stamped publisher')
+    probe.spin_for(0.5)  # the teleop's side of the match too
+    stamped_teleop.press(b'l')
+    probe.spin_until(lambda: stamped, 5, 'a TwistStamped')
+    assert stamped[0].header.frame_id == 'base_link'
+    assert stamped[0].header.stamp.sec > 0
+    assert velocities(stamped[0].twist) == (0, 0, 0, -1.0)
 
 
 def test_drives_turtlesim_with_repeat_rate_and_key_timeout(terminals, launch, ros_env,
@@ -124,41 +138,27 @@ def test_drives_turtlesim_with_repeat_rate_and_key_timeout(terminals, launch, ro
     assert teleop.process.wait(timeout=10) == 0
 
 
-def test_stamped_publishes_twist_stamped_in_frame_id(terminals, ros_env, probe) -> None:
-    stamped = probe.collect(TwistStamped, '/cmd_vel')
-    teleop = terminals('--ros-args', '-p', 'stamped:=true', '-p', 'frame_id:=base_link',
-                       env=ros_env)
-    teleop.wait_for_output('currently:')
-    probe.spin_until(lambda: probe.node.count_publishers('/cmd_vel') == 1, 10, 'the publisher')
-    probe.spin_for(0.5)  # the teleop's side of the match too (a volatile topic)
-    teleop.press(b'l')
-    probe.spin_until(lambda: stamped, 5, 'a TwistStamped')
-    assert stamped[0].header.frame_id == 'base_link'
-    assert stamped[0].header.stamp.sec > 0
-    assert velocities(stamped[0].twist) == (0, 0, 0, -1.0)
-    teleop.press(b'\x03')
-    assert teleop.process.wait(timeout=10) == 0
+BAD_PARAMETERS = {
+    'speed:=fast': "teleop_twist_keyboard: parameter 'speed' must be a finite number, got 'fast'",
+    'repeat_rate:=-1.0': "teleop_twist_keyboard: parameter 'repeat_rate' must be a finite "
+                         'number >= 0, got -1.0',
+    'frame_id:=base_link': "teleop_twist_keyboard: parameter 'frame_id' can only be set when "
+                           "'stamped' is true",
+}
 
 
-@pytest.mark.parametrize('args, line', [
-    (['-p', 'speed:=fast'], "teleop_twist_keyboard: parameter 'speed' must be a finite number, "
-                            "got 'fast'"),
-    (['-p', 'repeat_rate:=-1.0'], "teleop_twist_keyboard: parameter 'repeat_rate' must be a "
-                                  'finite number >= 0, got -1.0'),
-    (['-p', 'frame_id:=base_link'], "teleop_twist_keyboard: parameter 'frame_id' can only be "
-                                    "set when 'stamped' is true"),
-])
-def test_bad_parameters_get_one_line(terminals, ros_env, args, line) -> None:
-    teleop = terminals('--ros-args', *args, env=ros_env)
-    assert teleop.process.wait(timeout=20) == 1
-    teleop.wait_for_output(line)
-    assert teleop.text.strip() == line
-
-
-def test_no_terminal_gets_one_line(ros_env) -> None:
-    done = subprocess.run([TELEOP], stdin=subprocess.DEVNULL, capture_output=True, text=True,
-                          env=ros_env, timeout=20)
-    assert (done.returncode, done.stdout) == (1, '')
-    assert done.stderr == ('teleop_twist_keyboard: stdin is not a terminal: it reads single key '
-                           'presses, so run it in a terminal of its own (not from a launch file '
-                           'or a pipe)\n')
+def test_bad_input_gets_one_line(terminals, ros_env) -> None:
+    # All at once: each is a process start (~1-3 s here) and nothing they share.
+    no_terminal = subprocess.Popen([TELEOP], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                   stderr=subprocess.PIPE, text=True, env=ros_env)
+    started = {line: terminals('--ros-args', '-p', parameter, env=ros_env)
+               for parameter, line in BAD_PARAMETERS.items()}
+    for line, teleop in started.items():
+        assert teleop.process.wait(timeout=20) == 1
+        teleop.wait_for_output(line)
+        assert teleop.text.strip() == line
+    out, err = no_terminal.communicate(timeout=20)
+    assert (no_terminal.returncode, out) == (1, '')
+    assert err == ('teleop_twist_keyboard: stdin is not a terminal: it reads single key '
+                   'presses, so run it in a terminal of its own (not from a launch file or a '
+                   'pipe)\n')
