@@ -9,9 +9,11 @@ from __future__ import annotations
 import fcntl
 import importlib
 import os
+import pty
 import re
 import signal
 import subprocess
+import termios
 import threading
 import time
 from collections.abc import Callable, Iterator
@@ -273,3 +275,47 @@ def run_checked(args: list[str], cwd: Path, env: dict[str, str], timeout: float 
                             timeout=timeout, stdin=subprocess.DEVNULL)
     assert result.returncode == 0, f'{args} failed:\n{result.stdout}\n{result.stderr}'
     return result
+
+
+class Terminal:
+    """A command on a pseudo-terminal (a keyboard teleop reads keys from one), its output
+    read on a thread."""
+
+    def __init__(self, argv: list[str], env: dict[str, str]) -> None:
+        self.master, self.slave = pty.openpty()
+        self.before = termios.tcgetattr(self.slave)
+        self.process = subprocess.Popen(
+            argv, stdin=self.slave, stdout=self.slave, stderr=self.slave, env=env,
+            start_new_session=True)
+        self.output = b''
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self) -> None:
+        while True:
+            try:
+                data = os.read(self.master, 1024)
+            except OSError:
+                return
+            if not data:
+                return
+            self.output += data
+
+    @property
+    def text(self) -> str:
+        return self.output.replace(b'\r\n', b'\n').decode(errors='replace')
+
+    def wait_for_output(self, text: str, timeout: float = 10.0) -> None:
+        deadline = time.monotonic() + timeout
+        while text not in self.text:
+            assert time.monotonic() < deadline, self.text
+            time.sleep(0.05)
+
+    def press(self, keys: bytes) -> None:
+        os.write(self.master, keys)
+
+    def close(self) -> None:
+        if self.process.poll() is None:
+            self.process.kill()
+            self.process.wait()
+        os.close(self.slave)
+        os.close(self.master)

@@ -88,5 +88,8 @@ def test_the_pages_top_level_launch_file(workspace, launch, ros_env, probe) -> N
     # mimic: turtlesim2's turtle1 (spawned in the middle) drove off as turtle2 did.
     moved = poses['/turtlesim2/turtle1/pose']
     assert math.dist((moved.x, moved.y), (SPAWN, SPAWN)) > 1.0, moved
+    # rviz2 (no output='screen') says where its page is through the logger, which is shown.
+    demo.wait_for_output(r'^\[rviz2-\d+\] \[INFO\] \[\d+\.\d+\] \[rviz2\]: RViz: '
+                         r'http://127\.0\.0\.1:\d+/rviz\?token=\w+&config=\S+turtle_rviz\.rviz')
     assert demo.stop() == 0
     assert 'Traceback' not in demo.output

@@ -22,6 +22,11 @@ def test_r2d2_demo_frames_through_tf2(launch, probe) -> None:
         # state_publisher drives axis around a 2 m circle in odom.
         axis = buffer.lookup_transform('odom', 'axis', LATEST).transform.translation
         assert math.hypot(axis.x, axis.y) == pytest.approx(2.0, abs=0.01)
+        # /tf moves: half a second later r2d2 stands elsewhere on that circle.
+        probe.spin_for(0.5)
+        later = buffer.lookup_transform('odom', 'axis', LATEST).transform.translation
+        assert math.hypot(later.x, later.y) == pytest.approx(2.0, abs=0.01)
+        assert math.dist((axis.x, axis.y), (later.x, later.y)) > 0.05, (axis, later)
         # leg1connect is fixed: latched on /tf_static, answered at any time.
         assert buffer.can_transform('axis', 'leg1', rclpy.time.Time(seconds=1)) is True
         frames = buffer.all_frames_as_yaml()

@@ -3,11 +3,8 @@
 from __future__ import annotations
 
 import os
-import pty
 import signal
-import subprocess
 import termios
-import threading
 import time
 
 import pytest
@@ -16,7 +13,7 @@ from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
 from turtlesim_py.teleop import INSTRUCTIONS, Command, decode_key
 
-from support import executable, turtle_qos
+from support import Terminal, executable, turtle_qos
 
 
 @pytest.mark.parametrize('key, command', [
@@ -40,53 +37,14 @@ def test_decode_key(key, command):
     assert decode_key(key[0]) == command
 
 
-class Teleop:
-    """turtle_teleop_key on a pseudo-terminal, its output read on a thread."""
-
-    def __init__(self, env) -> None:
-        self.master, self.slave = pty.openpty()
-        self.before = termios.tcgetattr(self.slave)
-        self.process = subprocess.Popen(
-            [executable('turtlesim', 'turtle_teleop_key')], stdin=self.slave, stdout=self.slave,
-            stderr=self.slave, env=env, start_new_session=True)
-        self.output = b''
-        threading.Thread(target=self._read, daemon=True).start()
-
-    def _read(self) -> None:
-        while True:
-            try:
-                data = os.read(self.master, 1024)
-            except OSError:
-                return
-            if not data:
-                return
-            self.output += data
-
-    def wait_for_output(self, text: str, timeout: float = 10.0) -> None:
-        deadline = time.monotonic() + timeout
-        while text.encode() not in self.output.replace(b'\r\n', b'\n'):
-            assert time.monotonic() < deadline, self.output.decode(errors='replace')
-            time.sleep(0.05)
-
-    def press(self, keys: bytes) -> None:
-        os.write(self.master, keys)
-
-    def close(self) -> None:
-        if self.process.poll() is None:
-            self.process.kill()
-            self.process.wait()
-        os.close(self.slave)
-        os.close(self.master)
-
-
 @pytest.fixture
 def teleop(ros_env):
-    session = Teleop(ros_env)
+    session = Terminal([executable('turtlesim', 'turtle_teleop_key')], ros_env)
     yield session
     session.close()
 
 
-def wait_raw(teleop: Teleop) -> None:
+def wait_raw(teleop: Terminal) -> None:
     deadline = time.monotonic() + 10
     while termios.tcgetattr(teleop.slave)[3] & termios.ICANON:
         assert time.monotonic() < deadline, 'teleop never switched the terminal to raw mode'

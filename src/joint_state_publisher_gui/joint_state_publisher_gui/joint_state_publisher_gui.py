@@ -20,7 +20,7 @@ SLIDERS_TOPIC = '/joint_state_publisher_gui/sliders'
 
 
 def open_page() -> None:
-    from rqt_web.launcher import _open_browser
+    from rqt_web.launcher import Announcer, _open_browser
 
     from rqt_web import instance
     try:
@@ -29,8 +29,9 @@ def open_page() -> None:
         print(f'joint_state_publisher_gui: {error}', file=sys.stderr)
         return
     url = server.url('joint_state_publisher')
-    print(f'joint_state_publisher_gui: Joint State Publisher: {url}', flush=True)
-    _open_browser(url)
+    announcer = Announcer('joint_state_publisher_gui', sys.argv)
+    announcer.say(f'Joint State Publisher: {url}')
+    _open_browser(url, announcer.say)
 
 
 def add_sliders(node: JointStatePublisher) -> None:

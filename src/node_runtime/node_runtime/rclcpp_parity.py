@@ -13,6 +13,7 @@ from __future__ import annotations
 from rcl_interfaces.msg import ParameterDescriptor, ParameterEvent, SetParametersResult
 from rclpy.exceptions import InvalidParameterTypeException, InvalidParameterValueException
 from rclpy.node import Node
+from rclpy.parameter import Parameter
 from rclpy.qos import qos_profile_parameter_events
 
 PREFIX = 'qos_overrides./parameter_events.publisher.'
@@ -26,7 +27,7 @@ PARAMETER_EVENT_QOS_VALUES = (
 
 
 class RclcppParameters:
-    """Mixin for a Node: a refused read-only parameter reads as rclcpp words it."""
+    """Mixin for a Node: a refused read-only parameter or wrong type reads as rclcpp words it."""
 
     def _apply_descriptors(self, parameter_list, descriptors, check_read_only=True):
         if check_read_only:
@@ -37,6 +38,22 @@ class RclcppParameters:
                         successful=False, reason=f"parameter '{parameter.name}' cannot be set "
                         'because it is read-only')
         return super()._apply_descriptors(parameter_list, descriptors, check_read_only)
+
+    def _apply_descriptor(self, parameter, descriptor=None, check_read_only=True):
+        result = super()._apply_descriptor(parameter, descriptor, check_read_only)
+        if not result.successful and result.reason.startswith('Wrong parameter type, expected'):
+            # rclcpp's words (the "Using the ros2 param command-line tool" page's `off`).
+            declared = Parameter.Type((descriptor or self.describe_parameter(parameter.name)).type)
+            result.reason = (
+                f'Wrong parameter type, parameter {{{parameter.name}}} is of type '
+                f'{{{_rclcpp_type_name(declared)}}}, setting it to '
+                f'{{{_rclcpp_type_name(parameter.type_)}}} is not allowed.')
+        return result
+
+
+def _rclcpp_type_name(kind: Parameter.Type) -> str:
+    """rclcpp::to_string(ParameterType): 'bool', 'integer_array', 'not set'."""
+    return kind.name.lower().replace('not_set', 'not set')
 
 
 def declare_rclcpp_parameters(node: Node, subscribe_parameter_events: bool = True) -> None:

@@ -11,6 +11,7 @@ import argparse
 import os
 import sys
 import webbrowser
+from collections.abc import Callable
 
 from rqt_web import instance
 
@@ -42,8 +43,9 @@ def parse_args(argv: list[str], page: str | None) -> argparse.Namespace:
 
 
 def main(argv: list[str] | None = None, page: str | None = None) -> int:
-    argv = _without_ros_args(sys.argv[1:] if argv is None else argv)
-    args = parse_args(argv, page)
+    full_argv = sys.argv[1:] if argv is None else argv
+    args = parse_args(_without_ros_args(full_argv), page)
+    announcer = Announcer('rqt', full_argv, os.path.basename(sys.argv[0]) or 'rqt')
     if args.stop:
         print('rqt: stopped' if instance.stop() else 'rqt: no web app is running')
         return 0
@@ -71,26 +73,57 @@ def main(argv: list[str] | None = None, page: str | None = None) -> int:
     url = server.url(page)
     # The index page's title is "rqt" itself: "rqt: rqt: URL" would read as a stutter.
     label = '' if page == 'index' else f'{instance.PAGES[page][1]}: '
-    print(f'rqt: {label}{url}' + ('' if started else ' (web app already running)'))
+    announcer.say(f'{label}{url}' + ('' if started else ' (web app already running)'))
     if not args.no_browser:
-        _open_browser(url)
+        _open_browser(url, announcer.say)
     return 0
 
 
-def _open_browser(url: str) -> None:
+def _open_browser(url: str, say: Callable[[str], None] | None = None) -> None:
     """Open `url` in the default browser when one can show it; never fail without one."""
+    say = say or Announcer('rqt', []).say
     has_display = bool(os.environ.get('DISPLAY') or os.environ.get('WAYLAND_DISPLAY'))
     # Without a display, Python's webbrowser falls back to text browsers (lynx, w3m) that
     # would take over this terminal: only $BROWSER chosen by the user is used then.
     if not (os.environ.get('BROWSER') or has_display):
-        print('rqt: no display here: open the URL above in a browser '
-              '(over SSH: ssh -L PORT:127.0.0.1:PORT this-host, then the same URL)')
+        say('no display here: open the URL above in a browser '
+            '(over SSH: ssh -L PORT:127.0.0.1:PORT this-host, then the same URL)')
         return
     try:
         if not webbrowser.open(url):
-            print('rqt: no browser found: open the URL above yourself')
+            say('no browser found: open the URL above yourself')
     except webbrowser.Error as error:
-        print(f'rqt: could not open a browser ({error}): open the URL above yourself')
+        say(f'could not open a browser ({error}): open the URL above yourself')
+
+
+class Announcer:
+    """Says a line as `PROG: text` on stdout, and also through the ROS logger at INFO when
+    stdout is no terminal: `ros2 launch` keeps a launched node's stdout in its log file
+    (output='log', the default) but shows its log lines, so a learner who started rviz2 or
+    rqt from a launch file still learns the page's URL."""
+
+    def __init__(self, prog: str, argv: list[str], logger_name: str | None = None) -> None:
+        self.prog = prog
+        self.logger_name = _remapped_node_name(argv) or logger_name or prog
+        self.logger = None
+
+    def say(self, text: str) -> None:
+        print(f'{self.prog}: {text}', flush=True)
+        if sys.stdout.isatty():
+            return
+        if self.logger is None:
+            # Imported only here: a launcher in a terminal stays quick to start.
+            from rclpy.logging import get_logger
+            self.logger = get_logger(self.logger_name)
+        self.logger.info(text)
+
+
+def _remapped_node_name(argv: list[str]) -> str | None:
+    """The node name given by `--ros-args -r __node:=NAME` (as launch_ros's Node passes it)."""
+    for previous, arg in zip(['', *argv], argv, strict=False):
+        if previous in ('-r', '--remap') and arg.startswith('__node:='):
+            return arg.split(':=', 1)[1] or None
+    return None
 
 
 def _without_ros_args(argv: list[str]) -> list[str]:

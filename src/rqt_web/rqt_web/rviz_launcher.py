@@ -13,7 +13,7 @@ import sys
 import urllib.parse
 
 from rqt_web import instance
-from rqt_web.launcher import _open_browser, _without_ros_args
+from rqt_web.launcher import Announcer, _open_browser, _without_ros_args
 
 
 def parse_args(argv: list[str]) -> argparse.Namespace:
@@ -31,7 +31,9 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = parse_args(_without_ros_args(sys.argv[1:] if argv is None else argv))
+    full_argv = sys.argv[1:] if argv is None else argv
+    args = parse_args(_without_ros_args(full_argv))
+    announcer = Announcer('rviz2', full_argv)
     query = {}
     if args.display_config:
         path = os.path.abspath(os.path.expanduser(args.display_config))
@@ -48,9 +50,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f'rviz2: {error}', file=sys.stderr)
         return 1
     url = server.url('rviz') + ''.join(f'&{k}={urllib.parse.quote(v)}' for k, v in query.items())
-    print(f'rviz2: RViz: {url}' + ('' if started else ' (web app already running)'))
+    announcer.say(f'RViz: {url}' + ('' if started else ' (web app already running)'))
     if not args.no_browser:
-        _open_browser(url)
+        _open_browser(url, announcer.say)
     return 0
 
 

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import rclpy
 from geometry_msgs.msg import Twist
+from node_runtime.keyboard import RawTerminal
 from node_runtime.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
 from rclpy.action import ActionClient
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
@@ -59,27 +60,6 @@ def decode_key(byte: int) -> Command | None:
     if char == 'q':
         return Command('quit')
     return None
-
-
-class RawTerminal:
-    """Non-canonical, no-echo stdin (VMIN=0, VTIME=1); the old settings come back on exit."""
-
-    def __init__(self, fd: int) -> None:
-        self.fd = fd
-        self.saved: list | None = None
-
-    def __enter__(self) -> RawTerminal:
-        self.saved = termios.tcgetattr(self.fd)
-        raw = termios.tcgetattr(self.fd)
-        raw[3] &= ~(termios.ICANON | termios.ECHO)
-        raw[6][termios.VMIN] = 0
-        raw[6][termios.VTIME] = 1
-        termios.tcsetattr(self.fd, termios.TCSANOW, raw)
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        if self.saved is not None:
-            termios.tcsetattr(self.fd, termios.TCSANOW, self.saved)
 
 
 class TeleopTurtle(RclcppParameters, Node):

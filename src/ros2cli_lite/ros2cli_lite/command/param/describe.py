@@ -35,15 +35,14 @@ def main(args: argparse.Namespace) -> int | str:
         if descriptor.description:
             print('  Description:', descriptor.description)
         ranges = list(descriptor.floating_point_range) + list(descriptor.integer_range)
-        if (descriptor.read_only or ranges or descriptor.additional_constraints):
-            print('  Constraints:')
-            if descriptor.read_only:
-                print('    Read only: true')
-            if ranges:
-                print('    Min value:', ranges[0].from_value)
-                print('    Max value:', ranges[0].to_value)
-                if ranges[0].step:
-                    print('    Step:', ranges[0].step)
-            if descriptor.additional_constraints:
-                print('    Additional constraints:', descriptor.additional_constraints)
+        print('  Constraints:')  # always, as ros2param prints it (empty when there are none)
+        if descriptor.read_only:
+            print('    Read only: true')
+        if ranges:
+            print('    Min value:', ranges[0].from_value)
+            print('    Max value:', ranges[0].to_value)
+            if ranges[0].step:
+                print('    Step:', ranges[0].step)
+        if descriptor.additional_constraints:
+            print('    Additional constraints:', descriptor.additional_constraints)
     return 0
