@@ -6,7 +6,7 @@ import argparse
 import sys
 import time
 
-from ros2cli_lite.api import is_hidden
+from ros2cli_lite.api import CliError, is_hidden
 
 HIDDEN = '--include-hidden-topics'
 
@@ -18,6 +18,17 @@ def positive_int(text: str) -> int:
         value = 0
     if value <= 0:
         raise argparse.ArgumentTypeError(f'value must be a positive integer, got {text!r}')
+    return value
+
+
+def positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f'Expects a floating point number, got {text!r}') \
+            from None
+    if not value > 0.0:
+        raise argparse.ArgumentTypeError(f'Value must be positive, got {text!r}')
     return value
 
 
@@ -46,9 +57,50 @@ def lookup(node, name: str, include_hidden: bool, settle: float = 0.2,
     return types()
 
 
+def lookup_now(node, name: str, spin_time: float | None = None) -> list[str] | None:
+    """The types of topic `name`, without waiting for it to appear (as ros2cli's echo): None
+    once the node has met every participant on this host and their endpoints are known."""
+    from ros2cli_lite.node import wait_for_graph
+    from ros2cli_lite.participants import everyone_met
+
+    def types():
+        return dict(topics(node, True)).get(name)
+    # Where the participants cannot be counted, the usual bounded wait for the name.
+    wait_for_graph(node, ready=lambda: types() is not None or everyone_met(node) is True,
+                   settle=0.2, bound=spin_time)
+    return types()
+
+
+def message_filter(expression: str | None):
+    """ros2cli's `--filter EXPR`: a predicate evaluating the Python expression with the message
+    as `m` (and Python's builtins), or None without an expression."""
+    if not expression:
+        return None
+    try:
+        code = compile(expression, '<filter>', 'eval')
+    except SyntaxError as error:
+        raise CliError(f'--filter: {expression!r} is no Python expression: {error.msg}') \
+            from None
+
+    def keep(m) -> bool:
+        try:
+            return bool(eval(code, {}, {'m': m}))
+        except Exception as error:  # the user's expression, on this message
+            raise CliError(f'--filter: {expression!r} failed: {error!r}') from None
+    return keep
+
+
+def apply_sim_time(node, args: argparse.Namespace) -> None:
+    """`-s/--use-sim-time`: the node's clock follows /clock (rclpy's TimeSource switches when
+    the parameter is set)."""
+    if getattr(args, 'use_sim_time', False):
+        from rclpy.parameter import Parameter
+        node.set_parameters([Parameter('use_sim_time', value=True)])
+
+
 def wait_for_type(node, topic: str, spin_time: float | None = None):
     """The message class of `topic`, waiting (with one warning) until it is published."""
-    from ros2cli_lite.api import CliError, import_type
+    from ros2cli_lite.api import import_type
     from ros2cli_lite.node import spin_once
     found = lookup(node, topic, True, settle=0.2, spin_time=spin_time)
     warned = False
