@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-import time
 
 from ros2cli_lite.api import CliError, is_hidden
 
@@ -71,6 +70,19 @@ def lookup_now(node, name: str, spin_time: float | None = None) -> list[str] | N
     return types()
 
 
+def daemon_lookup(name: str, spin_time: float | None = None) -> list[str] | None:
+    """The types of topic `name` in the daemon's graph (started if need be), waiting briefly
+    (`spin_time`, else 0.3 s) for a publisher that has only just started."""
+    from ros2cli_lite.graph import graph_source
+
+    def types(graph):
+        return dict(graph.topics(True)).get(name)
+    with graph_source(True, spin_time) as source:
+        graph = source.graph(ready=lambda g: types(g) is not None,
+                             bound=0.3 if spin_time is None else spin_time)
+    return types(graph)
+
+
 def message_filter(expression: str | None):
     """ros2cli's `--filter EXPR`: a predicate evaluating the Python expression with the message
     as `m` (and Python's builtins), or None without an expression."""
@@ -118,11 +130,9 @@ def wait_for_type(node, topic: str, spin_time: float | None = None):
 
 
 def report_every_second(node, report) -> None:
-    """Spin `node` until Ctrl-C, calling report() once a second (ros2cli's 1 s timer)."""
+    """Spin `node` until Ctrl-C, calling report() once a second of the node's clock (ros2cli's
+    1 s timer: with -s, simulated seconds, so reports fall on the simulated clock's ticks)."""
     from ros2cli_lite.node import spin_once
-    next_report = time.monotonic() + 1.0
+    node.create_timer(1.0, report)
     while True:
-        spin_once(node, max(0.0, min(0.1, next_report - time.monotonic())))
-        if time.monotonic() >= next_report:
-            next_report += 1.0
-            report()
+        spin_once(node, 0.1)

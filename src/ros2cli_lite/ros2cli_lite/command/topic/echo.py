@@ -125,11 +125,16 @@ def _lost(status: Any) -> None:
           f'\n\ttotal count: {status.total_count}', end='---\n', flush=True)
 
 
-def main(args: argparse.Namespace) -> int | str:
-    from rclpy.event_handler import UnsupportedEventTypeError
+def _unknown_type(topic: str) -> str:
+    # The warning on stdout, as ros2cli's print() (upstream's tests filter it from the output).
+    print(f'WARNING: topic [{topic}] does not appear to be published yet', flush=True)
+    return 'Could not determine the type for the passed topic'
 
+
+def main(args: argparse.Namespace) -> int | str:
     from ros2cli_lite.api import import_type
-    from ros2cli_lite.command.topic.api import apply_sim_time
+    from ros2cli_lite.command.topic.api import apply_sim_time, daemon_lookup
+    from ros2cli_lite.daemon.proxy import session
     from ros2cli_lite.node import cli_node, spin_once
     from ros2cli_lite.qos import subscription_events, subscription_qos
     fields = None
@@ -138,24 +143,27 @@ def main(args: argparse.Namespace) -> int | str:
         if not fields:
             return f"Invalid field value '{args.field}'"
     printer = _Printer(args, fields)
+    type_name = args.message_type
+    if type_name is None and session() is None and not args.no_daemon:
+        # As ros2cli: the daemon's graph, asked before this process joins the graph itself.
+        found = daemon_lookup(args.topic_name, args.spin_time)
+        if found is None:
+            return _unknown_type(args.topic_name)
+        type_name = found[0]
     with cli_node(spin_time=args.spin_time) as node:
+        from rclpy.event_handler import UnsupportedEventTypeError
+
         apply_sim_time(node, args)
-        if args.message_type:
-            try:
-                msg_type = import_type(args.message_type, 'msg')
-            except ValueError:
-                return 'The passed message type is invalid'
-        else:
+        if type_name is None:
             found = lookup_now(node, args.topic_name, args.spin_time)
             if found is None:
-                # On stdout, as ros2cli's print() (upstream's tests filter it from the output).
-                print(f'WARNING: topic [{args.topic_name}] does not appear to be published yet',
-                      flush=True)
-                return 'Could not determine the type for the passed topic'
-            try:
-                msg_type = import_type(found[0], 'msg')
-            except ValueError:
-                return f"The message type '{found[0]}' is invalid"
+                return _unknown_type(args.topic_name)
+            type_name = found[0]
+        try:
+            msg_type = import_type(type_name, 'msg')
+        except ValueError:
+            return ('The passed message type is invalid' if args.message_type else
+                    f"The message type '{type_name}' is invalid")
         events = subscription_events(node, args.topic_name)
         if not args.no_lost_messages:
             events.message_lost = _lost
