@@ -16,15 +16,18 @@ HELLO = 'hello'
 @pytest.fixture(scope='module')
 def publishing(module_ros_env):
     """A probe publishing /words ('hello'), /point, /polygon and /counted ('0', '1', ...)
-    at 10 Hz, spun in the background for the whole module."""
+    at 10 Hz, and a simulated /clock ten times as fast as the wall clock (one simulated
+    second per message), spun in the background for the whole module."""
     string = interface_type('std_msgs/msg/String')
     point = interface_type('geometry_msgs/msg/Point')
     polygon = interface_type('geometry_msgs/msg/Polygon')
     point32 = interface_type('geometry_msgs/msg/Point32')
+    clock = interface_type('rosgraph_msgs/msg/Clock')
     probe = TestNode(int(module_ros_env['ROS_DOMAIN_ID']), 'echo_options_probe')
     node = probe.node
     publishers = {name: node.create_publisher(kind, name, 10) for name, kind in (
-        ('/words', string), ('/point', point), ('/polygon', polygon), ('/counted', string))}
+        ('/words', string), ('/point', point), ('/polygon', polygon), ('/counted', string),
+        ('/clock', clock))}
     shape = polygon(points=[point32(x=1.0), point32(y=2.0)])
     counter = [0]
 
@@ -34,6 +37,9 @@ def publishing(module_ros_env):
         publishers['/polygon'].publish(shape)
         publishers['/counted'].publish(string(data=str(counter[0])))
         counter[0] += 1
+        tick = clock()
+        tick.clock.sec = counter[0]
+        publishers['/clock'].publish(tick)
 
     node.create_timer(0.1, publish)
     with Background(probe):
@@ -98,6 +104,22 @@ def test_hz_filter(publishing, tmp_path):
     finally:
         hz.stop()
     assert 3.5 < float(match.group(1)) < 6.5, hz.output
+
+
+def test_hz_and_bw_in_simulated_time(publishing, tmp_path):
+    # -s: the node's clock follows /clock, one simulated second per message of /counted.
+    hz = RosProcess(['ros2', 'topic', 'hz', '-s', '/counted'], publishing, tmp_path / 'hz.log')
+    bw = RosProcess(['ros2', 'topic', 'bw', '-s', '/words'], publishing, tmp_path / 'bw.log')
+    try:
+        rate = hz.wait_for_output(r'average rate: (\d+\.\d{3})\n', timeout=20)
+        # 'hello' is 16 bytes serialized: about 16 B per simulated second.
+        size = bw.wait_for_output(r'(\d+) B/s from \d+ messages\n\tMessage size mean: 16 B '
+                                  r'min: 16 B max: 16 B\n', timeout=20)
+    finally:
+        hz.stop()
+        bw.stop()
+    assert 0.8 < float(rate.group(1)) < 1.25, hz.output
+    assert 12 <= int(size.group(1)) <= 20, bw.output
 
 
 def test_pub_wait_for_subscriptions(publishing):
