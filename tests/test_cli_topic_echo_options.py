@@ -139,7 +139,7 @@ def test_pub_wait_for_subscriptions(publishing):
 
 
 def test_ros2topic_api(publishing):
-    """Upstream's ros2topic.api, as fixture nodes and tools import it."""
+    """Upstream's ros2topic.api and verb classes, as fixture nodes and tools import them."""
     script = '''
 import time
 
@@ -160,8 +160,13 @@ while '/point' not in get_topic_names(node=node):
 print(dict(get_topic_names_and_types(node=node))['/point'])
 print(get_msg_class(node, '/point').__name__)
 print(get_msg_class(node, '/nobody_publishes'))
+# ros2cli's verb classes, driven from Python: options not given take their defaults.
+from argparse import Namespace
+from ros2topic.verb.info import InfoVerb
+print(InfoVerb().main(args=Namespace(topic_name='/nobody_publishes', spin_time=1.0)))
 '''
     result = subprocess.run([sys.executable, '-c', script], env=publishing, capture_output=True,
                             text=True, timeout=60)
     check(result, "['geometry_msgs/msg/Point']\nPoint\n"
-          'WARNING: topic [/nobody_publishes] does not appear to be published yet\nNone\n')
+          'WARNING: topic [/nobody_publishes] does not appear to be published yet\nNone\n'
+          "Unknown topic '/nobody_publishes'\n")
