@@ -108,8 +108,9 @@ def test_topic_echo(ros_env, node):
     check(ros2(ros_env, 'topic', 'echo', '--once', '/pose'), pose)
     check(ros2(ros_env, 'topic', 'echo', '--once', '/pose', 'turtlesim/msg/Pose'), pose)
     check(ros2(ros_env, 'topic', 'echo', '--once', '--field', 'theta', '/pose'), '-0.5\n---\n')
+    # The warning on stdout, as ros2cli prints it.
     check(ros2(ros_env, 'topic', 'echo', '--spin-time', '1', '--once', '/nope'),
-          '', 'WARNING: topic [/nope] does not appear to be published yet\n'
+          'WARNING: topic [/nope] does not appear to be published yet\n',
           'Could not determine the type for the passed topic\n', 1)
 
 

@@ -70,29 +70,41 @@ def policies_given(args: argparse.Namespace) -> bool:
 def qos_profile_from_args(args: argparse.Namespace) -> Any:
     """The --qos-profile preset with the policies given on the command line (a copy: rclpy's
     presets are shared objects)."""
+    from rclpy.qos import QoSPresetProfiles
+
+    profile = copy.copy(QoSPresetProfiles.get_from_short_key(args.qos_profile))
+    return configure_profile(
+        profile, reliability=args.qos_reliability, durability=args.qos_durability,
+        depth=args.qos_depth, history=args.qos_history, liveliness=args.qos_liveliness,
+        lease_seconds=args.qos_liveliness_lease_duration_seconds)
+
+
+def configure_profile(profile: Any, *, reliability: str | None = None,
+                      durability: str | None = None, depth: int | None = None,
+                      history: str | None = None, liveliness: str | None = None,
+                      lease_seconds: float | None = None) -> Any:
+    """`profile` with the policies given by their short keys (None: keep the profile's); a
+    transient-local profile of depth 0 gets depth 1, as ros2topic does. Returns `profile`."""
     from rclpy.duration import Duration
     from rclpy.qos import (
         QoSDurabilityPolicy,
         QoSHistoryPolicy,
         QoSLivelinessPolicy,
-        QoSPresetProfiles,
         QoSReliabilityPolicy,
     )
 
-    profile = copy.copy(QoSPresetProfiles.get_from_short_key(args.qos_profile))
-    if args.qos_history:
-        profile.history = QoSHistoryPolicy.get_from_short_key(args.qos_history)
-    if args.qos_durability:
-        profile.durability = QoSDurabilityPolicy.get_from_short_key(args.qos_durability)
-    if args.qos_reliability:
-        profile.reliability = QoSReliabilityPolicy.get_from_short_key(args.qos_reliability)
-    if args.qos_liveliness:
-        profile.liveliness = QoSLivelinessPolicy.get_from_short_key(args.qos_liveliness)
-    lease = args.qos_liveliness_lease_duration_seconds
-    if lease is not None and lease >= 0:
-        profile.liveliness_lease_duration = Duration(nanoseconds=int(lease * 1e9))
-    if args.qos_depth is not None and args.qos_depth >= 0:
-        profile.depth = args.qos_depth
+    if history:
+        profile.history = QoSHistoryPolicy.get_from_short_key(history)
+    if durability:
+        profile.durability = QoSDurabilityPolicy.get_from_short_key(durability)
+    if reliability:
+        profile.reliability = QoSReliabilityPolicy.get_from_short_key(reliability)
+    if liveliness:
+        profile.liveliness = QoSLivelinessPolicy.get_from_short_key(liveliness)
+    if lease_seconds is not None and lease_seconds >= 0:
+        profile.liveliness_lease_duration = Duration(nanoseconds=int(lease_seconds * 1e9))
+    if depth is not None and depth >= 0:
+        profile.depth = depth
     elif profile.durability == QoSDurabilityPolicy.TRANSIENT_LOCAL and profile.depth == 0:
         profile.depth = 1
     return profile

@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import argparse
 import sys
-import time
 
-from ros2cli_lite.api import is_hidden
+from ros2cli_lite.api import CliError, is_hidden
 
 HIDDEN = '--include-hidden-topics'
 
@@ -18,6 +17,17 @@ def positive_int(text: str) -> int:
         value = 0
     if value <= 0:
         raise argparse.ArgumentTypeError(f'value must be a positive integer, got {text!r}')
+    return value
+
+
+def positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f'Expects a floating point number, got {text!r}') \
+            from None
+    if not value > 0.0:
+        raise argparse.ArgumentTypeError(f'Value must be positive, got {text!r}')
     return value
 
 
@@ -46,9 +56,63 @@ def lookup(node, name: str, include_hidden: bool, settle: float = 0.2,
     return types()
 
 
+def lookup_now(node, name: str, spin_time: float | None = None) -> list[str] | None:
+    """The types of topic `name`, without waiting for it to appear (as ros2cli's echo): None
+    once the node has met every participant on this host and their endpoints are known."""
+    from ros2cli_lite.node import wait_for_graph
+    from ros2cli_lite.participants import everyone_met
+
+    def types():
+        return dict(topics(node, True)).get(name)
+    # Where the participants cannot be counted, the usual bounded wait for the name.
+    wait_for_graph(node, ready=lambda: types() is not None or everyone_met(node) is True,
+                   settle=0.2, bound=spin_time)
+    return types()
+
+
+def daemon_lookup(name: str, spin_time: float | None = None) -> list[str] | None:
+    """The types of topic `name` in the daemon's graph (started if need be), waiting briefly
+    (`spin_time`, else 0.3 s) for a publisher that has only just started."""
+    from ros2cli_lite.graph import graph_source
+
+    def types(graph):
+        return dict(graph.topics(True)).get(name)
+    with graph_source(True, spin_time) as source:
+        graph = source.graph(ready=lambda g: types(g) is not None,
+                             bound=0.3 if spin_time is None else spin_time)
+    return types(graph)
+
+
+def message_filter(expression: str | None):
+    """ros2cli's `--filter EXPR`: a predicate evaluating the Python expression with the message
+    as `m` (and Python's builtins), or None without an expression."""
+    if not expression:
+        return None
+    try:
+        code = compile(expression, '<filter>', 'eval')
+    except SyntaxError as error:
+        raise CliError(f'--filter: {expression!r} is no Python expression: {error.msg}') \
+            from None
+
+    def keep(m) -> bool:
+        try:
+            return bool(eval(code, {}, {'m': m}))
+        except Exception as error:  # the user's expression, on this message
+            raise CliError(f'--filter: {expression!r} failed: {error!r}') from None
+    return keep
+
+
+def apply_sim_time(node, args: argparse.Namespace) -> None:
+    """`-s/--use-sim-time`: the node's clock follows /clock (rclpy's TimeSource switches when
+    the parameter is set)."""
+    if getattr(args, 'use_sim_time', False):
+        from rclpy.parameter import Parameter
+        node.set_parameters([Parameter('use_sim_time', value=True)])
+
+
 def wait_for_type(node, topic: str, spin_time: float | None = None):
     """The message class of `topic`, waiting (with one warning) until it is published."""
-    from ros2cli_lite.api import CliError, import_type
+    from ros2cli_lite.api import import_type
     from ros2cli_lite.node import spin_once
     found = lookup(node, topic, True, settle=0.2, spin_time=spin_time)
     warned = False
@@ -66,11 +130,9 @@ def wait_for_type(node, topic: str, spin_time: float | None = None):
 
 
 def report_every_second(node, report) -> None:
-    """Spin `node` until Ctrl-C, calling report() once a second (ros2cli's 1 s timer)."""
+    """Spin `node` until Ctrl-C, calling report() once a second of the node's clock (ros2cli's
+    1 s timer: with -s, simulated seconds, so reports fall on the simulated clock's ticks)."""
     from ros2cli_lite.node import spin_once
-    next_report = time.monotonic() + 1.0
+    node.create_timer(1.0, report)
     while True:
-        spin_once(node, max(0.0, min(0.1, next_report - time.monotonic())))
-        if time.monotonic() >= next_report:
-            next_report += 1.0
-            report()
+        spin_once(node, 0.1)

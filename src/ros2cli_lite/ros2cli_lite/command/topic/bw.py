@@ -28,8 +28,10 @@ def main(args: argparse.Namespace) -> int | str:
 
     from rclpy.qos import qos_profile_sensor_data
 
+    from ros2cli_lite.command.topic.api import apply_sim_time
     from ros2cli_lite.node import cli_node
     with cli_node(spin_time=args.spin_time) as node:
+        apply_sim_time(node, args)
         msg_type = wait_for_type(node, args.topic_name, args.spin_time)
         clock = node.get_clock()
         window: deque[tuple[int, int]] = deque(maxlen=args.window)  # (ns received, bytes)

@@ -23,8 +23,10 @@ def main(args: argparse.Namespace) -> int | str:
     from rclpy.time import Time
 
     from ros2cli_lite.api import type_name
+    from ros2cli_lite.command.topic.api import apply_sim_time
     from ros2cli_lite.node import cli_node
     with cli_node(spin_time=args.spin_time) as node:
+        apply_sim_time(node, args)
         msg_type = wait_for_type(node, args.topic_name, args.spin_time)
         if 'header' not in msg_type.get_fields_and_field_types():
             return (f'{type_name(msg_type)} has no header: the delay is measured from '

@@ -5,11 +5,23 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+from typing import Any
 
-from ros2cli_lite.command.topic.api import lookup
+from ros2cli_lite.command.topic.api import lookup_now, message_filter, positive_float
 from ros2cli_lite.qos import add_qos_arguments
 
 HELP = 'Output messages from a topic'
+DEFAULT_TRUNCATE_LENGTH = 128
+
+
+def _unsigned_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if value < 0:
+        raise argparse.ArgumentTypeError(f'value must be a non-negative integer, got {text!r}')
+    return value
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -17,14 +29,41 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('message_type', nargs='?',
                         help="Type of the ROS message (e.g. 'std_msgs/msg/String')")
     add_qos_arguments(parser, 'subscribe', 'sensor_data')
-    parser.add_argument('--once', action='store_true', help='Print the first message received and '
-                        'then exit')
+    parser.add_argument('--csv', action='store_true',
+                        help='Output all recursive fields separated by commas (e.g. for '
+                        'plotting). If --include-message-info is also passed, the following '
+                        'fields are prepended: source_timestamp, received_timestamp, '
+                        'publication_sequence_number, reception_sequence_number.')
     parser.add_argument('--field', type=str, default=None,
-                        help="Echo a selected field of a message, e.g. 'linear.x'")
+                        help="Echo a selected field of a message. Use '.' to select sub-fields. "
+                        'For example, to echo the position field of a nav_msgs/msg/Odometry '
+                        "message: 'ros2 topic echo /odom --field pose.pose.position'")
+    parser.add_argument('--full-length', '-f', action='store_true',
+                        help='Output all elements for arrays, bytes, and string with a length '
+                        "> '--truncate-length', by default they are truncated after "
+                        "'--truncate-length' elements with '...''")
+    parser.add_argument('--truncate-length', '-l', type=_unsigned_int,
+                        default=DEFAULT_TRUNCATE_LENGTH,
+                        help='The length to truncate arrays, bytes, and string to (default: '
+                        f'{DEFAULT_TRUNCATE_LENGTH})')
+    parser.add_argument('--no-arr', action='store_true',
+                        help="Don't print array fields of messages")
+    parser.add_argument('--no-str', action='store_true',
+                        help="Don't print string fields of messages")
     parser.add_argument('--flow-style', action='store_true', help='Print collections in the block '
                         'style (not available with csv format)')
-    parser.add_argument('--timeout', type=float, default=None,
-                        help='Stop after this many seconds without a message (with --once)')
+    parser.add_argument('--no-lost-messages', action='store_true',
+                        help="Don't report when a message is lost")
+    parser.add_argument('--raw', action='store_true', help='Echo the raw binary representation')
+    parser.add_argument('--filter', dest='filter_expr',
+                        help='Python expression to filter messages that are printed. Expression '
+                        'can use Python builtins as well as m (the message).')
+    parser.add_argument('--once', action='store_true',
+                        help='Print the first message received and then exit.')
+    parser.add_argument('--timeout', metavar='N', type=positive_float, default=None,
+                        help='Set a timeout in seconds for waiting')
+    parser.add_argument('--include-message-info', '-i', action='store_true',
+                        help='Shows the associated message info.')
 
 
 def runs_in_daemon(args: argparse.Namespace) -> bool:
@@ -33,61 +72,114 @@ def runs_in_daemon(args: argparse.Namespace) -> bool:
     return args.once
 
 
+class _Printer:
+    """Turns each received message into ros2cli's output: YAML (or CSV, or the raw bytes)
+    followed by `---`."""
+
+    def __init__(self, args: argparse.Namespace, fields: list[str] | None) -> None:
+        self.args = args
+        self.fields = fields
+        self.keep = message_filter(args.filter_expr)
+        self.options = {'truncate_length': None if args.full_length else args.truncate_length,
+                        'no_arr': args.no_arr, 'no_str': args.no_str}
+        self.count = 0
+        self.error: str | None = None
+
+    def __call__(self, msg: Any, info: Any) -> None:
+        if self.error is not None or (self.args.once and self.count):
+            return
+        value = msg
+        for field in self.fields or ():
+            try:
+                value = getattr(value, field)
+            except AttributeError as error:
+                self.error = f"Invalid field '{'.'.join(self.fields)}': {error}"
+                return
+        if self.keep is not None and not self.keep(value):
+            return
+        self.count += 1
+        sys.stdout.write(self.text(value, info))
+        sys.stdout.flush()
+
+    def text(self, value: Any, info: Any) -> str:
+        import yaml
+
+        from rosidl_runtime_py import message_to_csv, message_to_yaml
+
+        with_info = self.args.include_message_info
+        if not hasattr(value, '__slots__'):  # raw bytes or a selected non-message field
+            head = f'---Got new message, message info:---\n{info}\n---Message data:---\n'
+            return (head if with_info else '') + f'{value}\n---\n'
+        if self.args.csv:
+            line = message_to_csv(value, **self.options)
+            if with_info:
+                line = ','.join(str(item) for item in info.values()) + ',' + line
+            return line + '\n'
+        head = yaml.dump(info) + '---\n' if with_info else ''
+        return head + message_to_yaml(value, flow_style=self.args.flow_style,
+                                      **self.options) + '---\n'
+
+
+def _lost(status: Any) -> None:
+    print(f'A message was lost!!!\n\ttotal count change:{status.total_count_change}'
+          f'\n\ttotal count: {status.total_count}', end='---\n', flush=True)
+
+
+def _unknown_type(topic: str) -> str:
+    # The warning on stdout, as ros2cli's print() (upstream's tests filter it from the output).
+    print(f'WARNING: topic [{topic}] does not appear to be published yet', flush=True)
+    return 'Could not determine the type for the passed topic'
+
+
 def main(args: argparse.Namespace) -> int | str:
     from ros2cli_lite.api import import_type
-    from ros2cli_lite.convert import to_yaml
+    from ros2cli_lite.command.topic.api import apply_sim_time, daemon_lookup
+    from ros2cli_lite.daemon.proxy import session
     from ros2cli_lite.node import cli_node, spin_once
     from ros2cli_lite.qos import subscription_events, subscription_qos
-    from rosidl_runtime_py import message_to_yaml
-    fields = args.field.split('.') if args.field else []
+    fields = None
+    if args.field is not None:
+        fields = [name for name in args.field.split('.') if name]
+        if not fields:
+            return f"Invalid field value '{args.field}'"
+    printer = _Printer(args, fields)
+    type_name = args.message_type
+    if type_name is None and session() is None and not args.no_daemon:
+        # As ros2cli: the daemon's graph, asked before this process joins the graph itself.
+        found = daemon_lookup(args.topic_name, args.spin_time)
+        if found is None:
+            return _unknown_type(args.topic_name)
+        type_name = found[0]
     with cli_node(spin_time=args.spin_time) as node:
-        if args.message_type:
-            try:
-                msg_type = import_type(args.message_type, 'msg')
-            except ValueError:
-                return 'The passed message type is invalid'
-            lookup(node, args.topic_name, True, settle=0.2, spin_time=args.spin_time)
-        else:
-            found = lookup(node, args.topic_name, True, settle=0.2, spin_time=args.spin_time)
+        from rclpy.event_handler import UnsupportedEventTypeError
+
+        apply_sim_time(node, args)
+        if type_name is None:
+            found = lookup_now(node, args.topic_name, args.spin_time)
             if found is None:
-                print(f'WARNING: topic [{args.topic_name}] does not appear to be published yet',
-                      file=sys.stderr)
-                return 'Could not determine the type for the passed topic'
-            try:
-                msg_type = import_type(found[0], 'msg')
-            except ValueError:
-                return f"The message type '{found[0]}' is invalid"
-        state = {'count': 0, 'error': None}
-
-        def callback(msg) -> None:
-            if args.once and state['count']:
-                return
-            value = msg
-            for field in fields:
-                try:
-                    value = getattr(value, field)
-                except AttributeError:
-                    state['error'] = f"Invalid field '{args.field}': {type(value).__name__} has " \
-                        f"no field '{field}'"
-                    return
-            if hasattr(value, 'get_fields_and_field_types'):
-                text = message_to_yaml(value, flow_style=args.flow_style)
-            elif isinstance(value, (list, tuple)) or type(value).__name__ in ('array', 'ndarray'):
-                text = to_yaml(list(value), args.flow_style)
-            else:
-                text = f'{value}\n'
-            sys.stdout.write(text + '---\n')
-            sys.stdout.flush()
-            state['count'] += 1
-
-        node.create_subscription(msg_type, args.topic_name, callback,
-                                 subscription_qos(node, args),
-                                 event_callbacks=subscription_events(node, args.topic_name))
+                return _unknown_type(args.topic_name)
+            type_name = found[0]
+        try:
+            msg_type = import_type(type_name, 'msg')
+        except ValueError:
+            return ('The passed message type is invalid' if args.message_type else
+                    f"The message type '{type_name}' is invalid")
+        events = subscription_events(node, args.topic_name)
+        if not args.no_lost_messages:
+            events.message_lost = _lost
+        qos = subscription_qos(node, args)
+        try:
+            node.create_subscription(msg_type, args.topic_name, printer, qos,
+                                     event_callbacks=events, raw=args.raw)
+        except UnsupportedEventTypeError:  # an RMW without the message-lost event
+            events.message_lost = None
+            node.create_subscription(msg_type, args.topic_name, printer, qos,
+                                     event_callbacks=events, raw=args.raw)
+        # --timeout ends the echo after that long, quietly, with or without messages.
         deadline = None if args.timeout is None else time.monotonic() + args.timeout
-        while not (args.once and state['count']) and state['error'] is None:
-            if deadline is not None and time.monotonic() > deadline:
-                return f'No message received on {args.topic_name} within {args.timeout:g} s'
-            spin_once(node, 0.1)
-        if state['error']:
-            return state['error']
-    return 0
+        while not (args.once and printer.count) and printer.error is None:
+            if deadline is not None and time.monotonic() >= deadline:
+                break
+            spin_once(node, 0.1 if deadline is None else
+                      max(0.0, min(0.1, deadline - time.monotonic())))
+    return printer.error or 0

@@ -3,85 +3,110 @@
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 
+from ros2cli_lite.command.topic.api import positive_float
 from ros2cli_lite.qos import add_qos_arguments
 
 HELP = 'Publish a message to a topic'
+WAIT_STEP = 0.1  # seconds between two checks for matching subscriptions
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('topic_name', help="Name of the ROS topic to publish to (e.g. '/chatter')")
     parser.add_argument('message_type', help="Type of the ROS message (e.g. 'std_msgs/String')")
-    parser.add_argument('values', nargs='?', default='{}',
+    values = parser.add_mutually_exclusive_group()
+    values.add_argument('values', nargs='?', default='{}',
                         help="Values to fill the message with in YAML format (e.g. 'data: Hello "
                         "World'), otherwise the message will be published with default values")
-    parser.add_argument('-r', '--rate', metavar='N', type=float, default=1.0,
+    values.add_argument('--stdin', action='store_true', help='Read values from standard input')
+    parser.add_argument('-r', '--rate', metavar='N', type=positive_float, default=1.0,
                         help='Publishing rate in Hz (default: 1)')
     parser.add_argument('-p', '--print', metavar='N', type=int, default=1,
                         help='Only print every N-th published message (default: 1)')
     group = parser.add_mutually_exclusive_group()
     group.add_argument('-1', '--once', action='store_true',
                        help='Publish one message and exit')
-    group.add_argument('-t', '--times', type=int, default=0,
+    group.add_argument('-t', '--times', type=_non_negative_int, default=0,
                        help='Publish this number of times and then exit')
-    parser.add_argument('-w', '--wait-matching-subscriptions', type=int, default=None,
-                        help='Wait until finding the specified number of matching subscriptions '
-                        '(default: 1 with --once/--times, else 0)')
-    parser.add_argument('--max-wait-time-secs', type=float, default=None,
-                        help='Stop waiting for matching subscriptions after this many seconds')
-    parser.add_argument('--keep-alive', metavar='N', type=float, default=0.1,
+    parser.add_argument('-w', '--wait-matching-subscriptions', type=_non_negative_int,
+                        default=None,
+                        help='Wait until finding the specified number of matching subscriptions. '
+                        'Defaults to 1 when using "-1"/"--once"/"--times", otherwise defaults '
+                        'to 0.')
+    parser.add_argument('--max-wait-time-secs', type=positive_float, default=None,
+                        help='This sets the maximum wait time in seconds if '
+                        '--wait-until-matching-subscriptions is set. By default, this flag is '
+                        'not set meaning the subscriber will wait endlessly.')
+    parser.add_argument('--keep-alive', metavar='N', type=positive_float, default=0.1,
                         help='Keep publishing node alive for N seconds after the last msg '
                         '(default: 0.1)')
     parser.add_argument('-n', '--node-name', help='Name of the created publishing node')
     add_qos_arguments(parser, 'publish', 'default')
 
 
+def _non_negative_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if value < 0:
+        raise argparse.ArgumentTypeError(f'value must be a non-negative integer, got {text!r}')
+    return value
+
+
 def runs_in_daemon(args: argparse.Namespace) -> bool:
     """With --once or --times it publishes a fixed number of messages and exits: the daemon may run
     it for the CLI (daemon/proxy.py)."""
-    return bool(args.once or args.times)
+    return bool(args.once or args.times) and not args.stdin
 
 
 def main(args: argparse.Namespace) -> int | str:
     from ros2cli_lite.api import import_type
+    from ros2cli_lite.command.topic.api import apply_sim_time
     from ros2cli_lite.convert import populate
-    from ros2cli_lite.node import cli_node, spin_once
+    from ros2cli_lite.node import cli_node
     from ros2cli_lite.qos import publisher_events, qos_profile_from_args
     try:
         msg_type = import_type(args.message_type, 'msg')
     except ValueError:
         return 'The passed message type is invalid'
-    if args.rate <= 0:
-        return 'rate must be greater than zero'
     stamps: list = []  # fields given as `header: auto` / `stamp: now`, set at each publication
-    msg = populate(msg_type(), args.values, stamps)
+    msg = populate(msg_type(), sys.stdin.read() if args.stdin else args.values, stamps)
     times = 1 if args.once else args.times
     wait_for = args.wait_matching_subscriptions
     if wait_for is None:
         wait_for = 1 if times else 0
+    if wait_for == 0 and args.max_wait_time_secs is not None:
+        return ('--max-wait-time-secs option is only effective with '
+                '--wait-matching-subscriptions, --once or --times')
     with cli_node(args.node_name, spin_time=args.spin_time) as node:
+        apply_sim_time(node, args)
         publisher = node.create_publisher(
             msg_type, args.topic_name, qos_profile_from_args(args),
             event_callbacks=publisher_events(node, args.topic_name))
+        # ros2cli's wait: checks every 0.1 s, a note every second, the limit counted in checks.
         start = time.monotonic()
-        last_note = None
+        checks = 0
         while publisher.get_subscription_count() < wait_for:
-            now = time.monotonic()
-            if args.max_wait_time_secs is not None and now - start > args.max_wait_time_secs:
-                return (f'Timed out waiting for subscriptions on {args.topic_name} after '
-                        f'{args.max_wait_time_secs:g} s')
-            if last_note is None or now - last_note >= 1.0:
+            if checks % 10 == 0:
                 print(f'Waiting for at least {wait_for} matching subscription(s)...', flush=True)
-                last_note = now
-            spin_once(node, 0.05)
+            if args.max_wait_time_secs is not None and \
+                    checks * WAIT_STEP >= args.max_wait_time_secs - 1e-9:
+                return (f'Timed out waiting for subscribers: Expected {wait_for} subcribers but '
+                        f'only got {publisher.get_subscription_count()} subscribers')
+            checks += 1
+            _spin_until(node, time.monotonic, start + checks * WAIT_STEP)
         print('publisher: beginning loop', flush=True)
+        # The period in the node's clock: with -s, in simulated time.
+        clock = node.get_clock()
+        period = int(1e9 / args.rate)
         count = 0
-        period = 1.0 / args.rate
-        next_time = time.monotonic()
+        next_time = clock.now().nanoseconds
         while True:
             if stamps:
-                now = node.get_clock().now().to_msg()
+                now = clock.now().to_msg()
                 for stamp in stamps:
                     stamp(now)
             publisher.publish(msg)
@@ -91,9 +116,13 @@ def main(args: argparse.Namespace) -> int | str:
             if times and count >= times:
                 break
             next_time += period
-            while time.monotonic() < next_time:
-                spin_once(node, max(0.0, min(0.05, next_time - time.monotonic())))
-        end = time.monotonic() + args.keep_alive
-        while time.monotonic() < end:
-            spin_once(node, max(0.0, min(0.05, end - time.monotonic())))
+            _spin_until(node, lambda: clock.now().nanoseconds, next_time)
+        _spin_until(node, time.monotonic, time.monotonic() + args.keep_alive)
     return 0
+
+
+def _spin_until(node, now, deadline: float) -> None:
+    """Spin `node` until the clock `now()` reads `deadline` (any unit)."""
+    from ros2cli_lite.node import spin_once
+    while now() < deadline:
+        spin_once(node, 0.01)

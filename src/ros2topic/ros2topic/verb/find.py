@@ -1,0 +1,5 @@
+from ros2topic.verb import VerbExtension
+
+
+class FindVerb(VerbExtension):
+    VERB = 'find'

@@ -1,0 +1,5 @@
+from ros2topic.verb import VerbExtension
+
+
+class ListVerb(VerbExtension):
+    VERB = 'list'
