@@ -61,6 +61,12 @@ def test_node_list_and_info(ros_env, node):
     assert '    /_hidden_flag: std_srvs/srv/SetBool\n' in hidden.stdout
     check(ros2(ros_env, 'node', 'info', '--spin-time', '1', 'cli_test_node'), '',
           "Unable to find node 'cli_test_node'\n", 1)
+    # A hidden node (the daemon's) is found only with --include-hidden, as upstream.
+    check(ros2(ros_env, 'node', 'info', '--spin-time', '1', everything[0]), '',
+          f"Unable to find node '{everything[0]}'\n", 1)
+    shown = ros2(ros_env, 'node', 'info', '--include-hidden', everything[0])
+    assert (shown.stdout.splitlines()[:2], shown.returncode) == (
+        [everything[0], '  Subscribers:'], 0)
 
 
 # --- ros2 topic ----------------------------------------------------------------------------
