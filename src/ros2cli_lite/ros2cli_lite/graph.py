@@ -326,6 +326,9 @@ def snapshot(node: Any, detail: bool = False) -> dict[str, Any]:
         for name, types, *_ in topics if name.endswith(_ACTION_FEEDBACK))
     data: dict[str, Any] = {'nodes': sorted(nodes), 'topics': topics, 'services': services,
                             'actions': actions}
+    # Each node's security enclave ('/' unless set), for ros2cli.node.daemon's query of them.
+    data['enclaves'] = {_full_name(n, ns): enclave for n, ns, enclave
+                        in node.get_node_names_and_namespaces_with_enclaves()}
     if detail:
         queries = (
             ('subscribers', node.get_subscriber_names_and_types_by_node),
