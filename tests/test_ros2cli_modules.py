@@ -34,8 +34,17 @@ with NodeStrategy(args) as node:
     print(['/pose', ['turtlesim/msg/Pose']] in node.get_topic_names_and_types(),
           ['/flag', ['std_srvs/srv/SetBool']] in node.get_service_names_and_types(),
           ['cli_test_node', '/', '/'] in node.get_node_names_and_namespaces_with_enclaves())
+    print('counts', node.count_publishers('/pose'), node.count_subscribers('/heard'),
+          node.count_services('/flag'), node.count_clients('/flag'))
+    print(node.get_subscriber_names_and_types_by_node('cli_test_node', '/'),
+          ['/flag', ['std_srvs/srv/SetBool']] in
+          node.get_service_names_and_types_by_node('cli_test_node', '/'))
+    print([(i.node_name, i.node_namespace, i.topic_type, i.endpoint_type.name,
+            i.qos_profile.reliability.name, i.qos_profile.durability.name)
+           for i in node.get_publishers_info_by_topic('/pose')])
+    print(node._direct_node is None)  # all answered by the daemon so far
     # What the daemon does not answer comes from a node of its own, made on first use.
-    print('publishers', node.count_publishers('/pose'), node._direct_node is not None)
+    print('direct', node.get_fully_qualified_name().startswith('/_ros2cli_'))
 with NodeStrategy(argparse.Namespace(no_daemon=True)) as node:
     print('no daemon', node.daemon_node is None)
 with DirectNode(argparse.Namespace(use_sim_time=True, spin_time=0.1)) as node:
@@ -61,7 +70,11 @@ direct True True
 running after True
 daemon True True /
 True True True
-publishers 1 True
+counts 1 1 1 0
+[['/heard', ['std_msgs/msg/String']]] True
+[('cli_test_node', '/', 'turtlesim/msg/Pose', 'PUBLISHER', 'RELIABLE', 'VOLATILE')]
+True
+direct True
 no daemon True
 sim time True
 connected True

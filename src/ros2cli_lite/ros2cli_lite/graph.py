@@ -353,6 +353,28 @@ def snapshot(node: Any, detail: bool = False) -> dict[str, Any]:
     return data
 
 
+def endpoint_records(node: Any, topic: str) -> tuple[list[dict], list[dict]]:
+    """The live publishers and subscribers of a topic as plain data: TopicEndpointInfo's
+    fields, QoS durations in nanoseconds (ros2cli.node.daemon rebuilds the infos)."""
+    liveness = _Liveness(_own_gid(node))
+
+    def record(info: Any) -> dict[str, Any]:
+        qos = info.qos_profile
+        return {
+            'node_name': info.node_name, 'node_namespace': info.node_namespace,
+            'topic_type': info.topic_type, 'endpoint_type': int(info.endpoint_type),
+            'endpoint_gid': list(info.endpoint_gid),
+            'qos': {'history': int(qos.history), 'depth': qos.depth,
+                    'reliability': int(qos.reliability), 'durability': int(qos.durability),
+                    'liveliness': int(qos.liveliness),
+                    **{key: getattr(qos, key).nanoseconds for key in
+                       ('deadline', 'lifespan', 'liveliness_lease_duration')}}}
+    return tuple(  # type: ignore[return-value]
+        [record(info) for info in infos if not liveness.dead(bytes(info.endpoint_gid))]
+        for infos in (node.get_publishers_info_by_topic(topic),
+                      node.get_subscriptions_info_by_topic(topic)))
+
+
 def endpoint_texts(node: Any, topic: str) -> tuple[list[str], list[str]]:
     """`str()` of the live publishers' and subscribers' TopicEndpointInfo of a topic."""
     liveness = _Liveness(_own_gid(node))

@@ -14,9 +14,19 @@ from typing import Any
 from ros2cli_lite.daemon import client
 
 # The graph queries a DaemonNode answers; NodeStrategy asks its direct node for the rest.
+# (DaemonNode method, NodeInfo field) of the per-node queries.
+BY_NODE = (('get_subscriber_names_and_types_by_node', 'subscribers'),
+           ('get_publisher_names_and_types_by_node', 'publishers'),
+           ('get_service_names_and_types_by_node', 'service_servers'),
+           ('get_client_names_and_types_by_node', 'service_clients'),
+           ('get_action_server_names_and_types_by_node', 'action_servers'),
+           ('get_action_client_names_and_types_by_node', 'action_clients'))
 METHODS = ('get_name', 'get_namespace', 'get_node_names_and_namespaces',
            'get_node_names_and_namespaces_with_enclaves', 'get_topic_names_and_types',
-           'get_service_names_and_types', 'get_action_names_and_types')
+           'get_service_names_and_types', 'get_action_names_and_types',
+           'get_publishers_info_by_topic', 'get_subscriptions_info_by_topic',
+           'count_publishers', 'count_subscribers', 'count_services', 'count_clients',
+           *(method for method, _ in BY_NODE))
 
 
 class _System:
@@ -51,9 +61,51 @@ class DaemonNode:
     def __exit__(self, exc_type: Any, exc_value: Any, traceback: Any) -> None:
         pass
 
-    def _graph(self) -> Any:
+    def _graph(self, detail: bool = False) -> Any:
         from ros2cli_lite.graph import Graph
-        return Graph(client.request({'op': 'graph', 'detail': False})['graph'])
+        return Graph(client.request({'op': 'graph', 'detail': detail})['graph'])
+
+    def __getattr__(self, name: str) -> Any:
+        # The per-node queries (BY_NODE): [name, [types]] of one entity kind of a node.
+        kind = dict(BY_NODE).get(name)
+        if kind is None:
+            raise AttributeError(f"'DaemonNode' object has no attribute '{name}'")
+
+        def by_node(node_name: str, node_namespace: str) -> list[list[Any]]:
+            full = node_namespace.rstrip('/') + '/' + node_name
+            info = self._graph(detail=True).node(full)
+            return [] if info is None else [[n, t] for n, t in getattr(info, kind)]
+        return by_node
+
+    def _endpoints(self, topic: str, index: int) -> list[Any]:
+        from rclpy.duration import Duration
+        from rclpy.topic_endpoint_info import TopicEndpointInfo
+        reply = client.request({'op': 'endpoint_records', 'topic': topic})
+        infos = []
+        for record in reply[('publishers', 'subscribers')[index]]:
+            qos = dict(record.pop('qos'))
+            for key in ('deadline', 'lifespan', 'liveliness_lease_duration'):
+                qos[key] = Duration(nanoseconds=qos[key])
+            infos.append(TopicEndpointInfo(**record, qos_profile=qos))
+        return infos
+
+    def get_publishers_info_by_topic(self, topic_name: str) -> list[Any]:
+        return self._endpoints(topic_name, 0)
+
+    def get_subscriptions_info_by_topic(self, topic_name: str) -> list[Any]:
+        return self._endpoints(topic_name, 1)
+
+    def count_publishers(self, topic_name: str) -> int:
+        return self._graph().topic_counts(topic_name)[0]
+
+    def count_subscribers(self, topic_name: str) -> int:
+        return self._graph().topic_counts(topic_name)[1]
+
+    def count_services(self, service_name: str) -> int:
+        return self._graph().service_counts(service_name)[0]
+
+    def count_clients(self, service_name: str) -> int:
+        return self._graph().service_counts(service_name)[1]
 
     def get_name(self) -> str:
         daemon = [n for n, _ in self._graph().nodes(include_hidden=True)
