@@ -197,6 +197,14 @@ def test_param_list_get(ros_env, node):
           lines(*(f'  {p}' for p in PARAMETERS)))
     check(ros2(ros_env, 'param', 'list'),
           lines('/cli_test_node:', *(f'  {p}' for p in PARAMETERS)))
+    # --filter: names the regex matches from their start; a node with none is left out.
+    check(ros2(ros_env, 'param', 'list', '/cli_test_node', '--filter', 's.*'),
+          lines('  speed', '  start_type_description_service'))
+    check(ros2(ros_env, 'param', 'list', '--filter', 'nothing'), '')
+    bad = ros2(ros_env, 'param', 'list', '--filter', '(')
+    assert (bad.returncode, bad.stderr.splitlines()[-1]) == (2, (
+        "ros2 param list: error: argument --filter: '(' is not a regular expression: "
+        'missing ), unterminated subpattern at position 0'))
     check(ros2(ros_env, 'param', 'get', '/cli_test_node', 'speed'), 'Integer value is: 69\n')
     check(ros2(ros_env, 'param', 'get', 'cli_test_node', 'ratio'), 'Double value is: 0.5\n')
     check(ros2(ros_env, 'param', 'get', '/cli_test_node', 'label'), 'String value is: hello\n')
