@@ -101,3 +101,29 @@ def test_doctor_warns_when_discovery_would_leave_the_machine(ros_env):
     assert any(m.startswith('ROS_DOMAIN_ID 150 is above 101') for m in messages), messages
     assert 'Only loopback IP address is found.' in messages
     assert result.stdout == '\nAll 5 checks passed\n\n'
+
+
+def test_doctor_reports_incompatible_qos_with_rclpys_reason(ros_env, probe):
+    from rclpy.qos import QoSProfile, ReliabilityPolicy
+    from std_msgs.msg import String
+
+    probe.node.create_publisher(
+        String, '/incompatible', QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT))
+    probe.node.create_subscription(
+        String, '/incompatible', lambda _: None,
+        QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE))
+    wait_until(lambda: 'Subscription count: 1' in ros2(ros_env, 'topic', 'info',
+                                                        '/incompatible').stdout,
+               timeout=10, what="the daemon's graph to list the probe's subscription")
+    # The report shows rclpy's reason as is, 'ERROR: ' included, as upstream's.
+    report = ros2(ros_env, 'doctor', '--report').stdout
+    assert ('topic [type]            : /incompatible [std_msgs/msg/String]\n'
+            'publisher node          : test_probe\n'
+            'subscriber node         : test_probe\n'
+            'compatibility status    : ERROR: Best effort publisher and reliable '
+            'subscription;') in report, report
+    # The check's line says it is an error once, without rclpy's prefix.
+    check = ros2(ros_env, 'doctor')
+    assert "QoS compatibility error found on topic '/incompatible': Best effort publisher" \
+        in check.stderr, check.stderr
+    assert 'ERROR: ERROR:' not in check.stderr and 'Failed modules: middleware' in check.stdout

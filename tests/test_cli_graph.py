@@ -61,6 +61,12 @@ def test_node_list_and_info(ros_env, node):
     assert '    /_hidden_flag: std_srvs/srv/SetBool\n' in hidden.stdout
     check(ros2(ros_env, 'node', 'info', '--spin-time', '1', 'cli_test_node'), '',
           "Unable to find node 'cli_test_node'\n", 1)
+    # A hidden node (the daemon's) is found only with --include-hidden, as upstream.
+    check(ros2(ros_env, 'node', 'info', '--spin-time', '1', everything[0]), '',
+          f"Unable to find node '{everything[0]}'\n", 1)
+    shown = ros2(ros_env, 'node', 'info', '--include-hidden', everything[0])
+    assert (shown.stdout.splitlines()[:2], shown.returncode) == (
+        [everything[0], '  Subscribers:'], 0)
 
 
 # --- ros2 topic ----------------------------------------------------------------------------
@@ -192,6 +198,14 @@ def test_param_list_get(ros_env, node):
           lines(*(f'  {p}' for p in PARAMETERS)))
     check(ros2(ros_env, 'param', 'list'),
           lines('/cli_test_node:', *(f'  {p}' for p in PARAMETERS)))
+    # --filter: names the regex matches from their start; a node with none is left out.
+    check(ros2(ros_env, 'param', 'list', '/cli_test_node', '--filter', 's.*'),
+          lines('  speed', '  start_type_description_service'))
+    check(ros2(ros_env, 'param', 'list', '--filter', 'nothing'), '')
+    bad = ros2(ros_env, 'param', 'list', '--filter', '(')
+    assert (bad.returncode, bad.stderr.splitlines()[-1]) == (2, (
+        "ros2 param list: error: argument --filter: '(' is not a regular expression: "
+        'missing ), unterminated subpattern at position 0'))
     check(ros2(ros_env, 'param', 'get', '/cli_test_node', 'speed'), 'Integer value is: 69\n')
     check(ros2(ros_env, 'param', 'get', 'cli_test_node', 'ratio'), 'Double value is: 0.5\n')
     check(ros2(ros_env, 'param', 'get', '/cli_test_node', 'label'), 'String value is: hello\n')

@@ -53,6 +53,7 @@ def test_show_reads_the_name_from_stdin(ros_env):
 @pytest.mark.parametrize('name, message', [
     ('turtlesim/SetPen', "Invalid name 'turtlesim/SetPen'. Expected three parts separated by '/'"),
     ('no_such_pkg/msg/X', "Unknown package 'no_such_pkg'"),
+    # rosidl_runtime_py's message names the last file it tried: the .idl one.
     ('turtlesim/msg/Nope', "Could not find the interface '"),
 ])
 def test_show_errors(ros_env, name, message):
@@ -61,6 +62,8 @@ def test_show_errors(ros_env, name, message):
     assert result.stdout == ''
     assert result.stderr.startswith(message)
     assert 'Traceback' not in result.stderr
+    if message.startswith('Could not find'):
+        assert result.stderr.endswith("/share/turtlesim/msg/Nope.idl'\n")
 
 
 def test_proto_prints_quoted_yaml_of_a_default_instance(ros_env):
@@ -104,5 +107,10 @@ def test_packages_and_package(ros_env):
         'turtlesim/action/RotateAbsolute', 'turtlesim/msg/Color', 'turtlesim/msg/Pose',
         'turtlesim/srv/Kill', 'turtlesim/srv/SetPen', 'turtlesim/srv/Spawn',
         'turtlesim/srv/TeleportAbsolute', 'turtlesim/srv/TeleportRelative']
+    # -m/-s/-a: only those kinds, messages then services then actions, as upstream.
+    kinds = ros2(ros_env, 'interface', 'package', '-a', '-m', 'turtlesim').stdout.splitlines()
+    assert kinds == [n for n in turtlesim if '/msg/' in n] + ['turtlesim/action/RotateAbsolute']
+    services = ros2(ros_env, 'interface', 'package', '--only-srvs', 'turtlesim')
+    assert services.stdout.splitlines() == [n for n in turtlesim if '/srv/' in n]
     unknown = ros2(ros_env, 'interface', 'package', 'no_such_pkg')
     assert (unknown.returncode, unknown.stderr) == (1, "Unknown package 'no_such_pkg'\n")

@@ -159,7 +159,10 @@ def test_dump_load_and_params_file_round_trip(module_ros_env, turtlesim, tmp_pat
 def test_load_and_delete_refuse_bad_input(module_ros_env, turtlesim, tmp_path):
     env = module_ros_env
     check(ros2(env, 'param', 'load', '/turtlesim', str(tmp_path / 'missing.yaml')), '',
-          f"Parameter file '{tmp_path / 'missing.yaml'}' does not exist\n", 1)
+          f"Parameter file '{tmp_path / 'missing.yaml'}': No such file or directory\n", 1)
+    # The node is looked up first, as upstream.
+    check(ros2(env, 'param', 'load', '--spin-time', '1', '/nobody',
+               str(tmp_path / 'missing.yaml')), '', 'Node not found\n', 1)
     broken = tmp_path / 'broken.yaml'
     broken.write_text('/turtlesim: [1, 2\n')
     result = ros2(env, 'param', 'load', '/turtlesim', str(broken))

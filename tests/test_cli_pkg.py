@@ -224,3 +224,42 @@ def test_interface_show_sensor_msgs_image(ros_env):
     for line in ('std_msgs/Header header', 'uint32 height', 'uint32 width', 'string encoding',
                  'uint8 is_bigendian', 'uint32 step', 'uint8[] data'):
         assert any(row.startswith(line) for row in result.stdout.splitlines()), line
+
+
+def test_create_ament_cmake_with_a_library(ros_env, tmp_path):
+    # --library-name: an empty C++ class with its visibility header, built and exported by
+    # the CMakeLists (ament_cmake_ros), the node linked against it, as upstream's.
+    result = create(ros_env, tmp_path, '--build-type', 'ament_cmake', '--license', 'MIT',
+                    '--node-name', 'my_node', '--library-name', 'my_lib', 'cpp_pkg',
+                    *MAINTAINER)
+    assert (result.returncode, result.stderr) == (0, '')
+    assert result.stdout == summary(tmp_path, 'cpp_pkg', 'ament_cmake', 'my_node',
+                                    license_name='MIT') + (
+        'library_name: my_lib\n'
+        'creating folder ./cpp_pkg\n'
+        'creating ./cpp_pkg/package.xml\n'
+        'creating source and include folder\n'
+        'creating folder ./cpp_pkg/src\n'
+        'creating folder ./cpp_pkg/include/cpp_pkg\n'
+        'creating ./cpp_pkg/CMakeLists.txt\n'
+        'creating ./cpp_pkg/src/my_node.cpp\n'
+        'creating ./cpp_pkg/include/cpp_pkg/my_lib.hpp\n'
+        'creating ./cpp_pkg/src/my_lib.cpp\n'
+        'creating ./cpp_pkg/include/cpp_pkg/visibility_control.h\n')
+    package = tmp_path / 'cpp_pkg'
+    assert '  <buildtool_depend>ament_cmake_ros</buildtool_depend>\n' in \
+        (package / 'package.xml').read_text()
+    cmake = (package / 'CMakeLists.txt').read_text()
+    assert 'find_package(ament_cmake_ros REQUIRED)\n' in cmake
+    assert 'add_library(my_lib src/my_lib.cpp)\nadd_library(cpp_pkg::my_lib ALIAS my_lib)\n' \
+        in cmake
+    assert 'target_link_libraries(my_node my_lib)\n' in cmake
+    assert cmake.endswith('ament_export_libraries(\n  my_lib\n)\nament_export_targets(\n'
+                          '  export_${PROJECT_NAME}\n)\n\nament_package()\n')
+    header = (package / 'include/cpp_pkg/my_lib.hpp').read_text()
+    assert header.startswith('#ifndef CPP_PKG__MY_LIB_HPP_\n#define CPP_PKG__MY_LIB_HPP_\n')
+    assert 'class MyLib\n{\npublic:\n  MyLib();\n\n  virtual ~MyLib();\n};\n' in header
+    assert 'MyLib::MyLib()\n{\n}\n' in (package / 'src/my_lib.cpp').read_text()
+    refused = create(ros_env, tmp_path, '--build-type', 'cmake', '--library-name', 'lib', 'c')
+    assert (refused.returncode, refused.stderr.count('\n')) == (1, 1)
+    assert refused.stderr.startswith('Invalid --library-name: ')

@@ -144,13 +144,17 @@ def test_service_echo_after_switching_introspection_on(module_ros_env, turtlesim
     check(ros2(module_ros_env, 'param', 'set', '/turtlesim', 'service_configure_introspection',
                'contents'), 'Set parameter successful\n')
     echo = background('ros2', 'service', 'echo', '--flow-style', '/spawn')
+    # --no-arr: arrays and sequences as upstream's '<... type: ...>' summaries.
+    summaries = background('ros2', 'service', 'echo', '--no-arr', '/spawn')
     probe = probe_in_module_domain
     # Generous: echo may first start the daemon (~4 s of discovery) before it subscribes.
-    probe.spin_until(lambda: probe.node.count_subscribers('/spawn/_service_event') >= 1, 30,
-                     'the echo subscription')
+    probe.spin_until(lambda: probe.node.count_subscribers('/spawn/_service_event') >= 2, 30,
+                     'the echo subscriptions')
     spawn = interface_type('turtlesim/srv/Spawn')
-    received, sent = _call_until_echoed(lambda attempt: probe.call(
-        spawn, '/spawn', spawn.Request(x=3.0, y=3.0, name=f'echoed{attempt}')), echo)[:2]
+
+    def spawn_one(attempt: int) -> None:
+        probe.call(spawn, '/spawn', spawn.Request(x=3.0, y=3.0, name=f'echoed{attempt}'))
+    received, sent = _call_until_echoed(spawn_one, echo)[:2]
     assert re.fullmatch(
         r'info:\n  event_type: REQUEST_RECEIVED\n  stamp:\n    sec: \d+\n    nanosec: \d+\n'
         r'  client_gid: \[(\d+, ){15}\d+\]\n  sequence_number: \d+\n'
@@ -158,6 +162,13 @@ def test_service_echo_after_switching_introspection_on(module_ros_env, turtlesim
         received), received
     assert re.search(r'event_type: RESPONSE_SENT\n.*request: \[\]\nresponse: \[\{name: '
                      r'echoed\d+\}\]\n$', sent, re.DOTALL), sent
+    summarised = _call_until_echoed(lambda attempt: spawn_one(10 + attempt), summaries)[0]
+    assert re.fullmatch(
+        r'info:\n  event_type: REQUEST_RECEIVED\n  stamp:\n    sec: \d+\n    nanosec: \d+\n'
+        r"  client_gid: '<array type: uint8\[16\]>'\n  sequence_number: \d+\n"
+        r"request: '<sequence type: turtlesim/srv/Spawn_Request\[1\], length: 1>'\n"
+        r"response: '<sequence type: turtlesim/srv/Spawn_Response\[1\], length: 0>'\n",
+        summarised), summarised
     refused = ros2(module_ros_env, 'param', 'set', '/turtlesim',
                    'service_configure_introspection', 'everything')
     assert refused.stderr == ('Setting parameter failed: parameter '

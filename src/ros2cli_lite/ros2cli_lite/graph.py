@@ -326,6 +326,9 @@ def snapshot(node: Any, detail: bool = False) -> dict[str, Any]:
         for name, types, *_ in topics if name.endswith(_ACTION_FEEDBACK))
     data: dict[str, Any] = {'nodes': sorted(nodes), 'topics': topics, 'services': services,
                             'actions': actions}
+    # Each node's security enclave ('/' unless set), for ros2cli.node.daemon's query of them.
+    data['enclaves'] = {_full_name(n, ns): enclave for n, ns, enclave
+                        in node.get_node_names_and_namespaces_with_enclaves()}
     if detail:
         queries = (
             ('subscribers', node.get_subscriber_names_and_types_by_node),
@@ -348,6 +351,28 @@ def snapshot(node: Any, detail: bool = False) -> dict[str, Any]:
             details[_full_name(name, namespace)] = (name, namespace, entities)
         data['details'] = details
     return data
+
+
+def endpoint_records(node: Any, topic: str) -> tuple[list[dict], list[dict]]:
+    """The live publishers and subscribers of a topic as plain data: TopicEndpointInfo's
+    fields, QoS durations in nanoseconds (ros2cli.node.daemon rebuilds the infos)."""
+    liveness = _Liveness(_own_gid(node))
+
+    def record(info: Any) -> dict[str, Any]:
+        qos = info.qos_profile
+        return {
+            'node_name': info.node_name, 'node_namespace': info.node_namespace,
+            'topic_type': info.topic_type, 'endpoint_type': int(info.endpoint_type),
+            'endpoint_gid': list(info.endpoint_gid),
+            'qos': {'history': int(qos.history), 'depth': qos.depth,
+                    'reliability': int(qos.reliability), 'durability': int(qos.durability),
+                    'liveliness': int(qos.liveliness),
+                    **{key: getattr(qos, key).nanoseconds for key in
+                       ('deadline', 'lifespan', 'liveliness_lease_duration')}}}
+    return tuple(  # type: ignore[return-value]
+        [record(info) for info in infos if not liveness.dead(bytes(info.endpoint_gid))]
+        for infos in (node.get_publishers_info_by_topic(topic),
+                      node.get_subscriptions_info_by_topic(topic)))
 
 
 def endpoint_texts(node: Any, topic: str) -> tuple[list[str], list[str]]:

@@ -270,7 +270,8 @@ def report_topics() -> list[Report]:
 
 
 def _qos_pairs() -> list[tuple[str, Any, Any, Any, str]]:
-    """(topic, publisher, subscription, compatibility, reason) for every pair."""
+    """(topic, publisher, subscription, compatibility, reason) for every pair; the reason as
+    rclpy gives it ('ERROR: Best effort publisher...'), which the report shows as is."""
     from rclpy.qos import qos_check_compatible
     found = graph()
     pairs = []
@@ -278,7 +279,6 @@ def _qos_pairs() -> list[tuple[str, Any, Any, Any, str]]:
         for pub in found.publishers[topic]:
             for sub in found.subscriptions[topic]:
                 compatibility, reason = qos_check_compatible(pub.qos_profile, sub.qos_profile)
-                reason = re.sub(r'^(?i:warning|error): ', '', reason)
                 pairs.append((topic, pub, sub, compatibility, reason))
     return pairs
 
@@ -289,6 +289,8 @@ def check_qos() -> Result:
     if _graph_or_failure(result) is None:
         return result
     for topic, _, _, compatibility, reason in _qos_pairs():
+        # The check's line says warning/error itself: without rclpy's leading 'ERROR: '.
+        reason = re.sub(r'^(?i:warning|error): ', '', reason)
         if compatibility == QoSCompatibility.WARNING:
             result.warn(f"QoS compatibility warning found on topic '{topic}': {reason}")
         elif compatibility == QoSCompatibility.ERROR:

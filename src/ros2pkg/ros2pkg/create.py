@@ -44,7 +44,10 @@ class PackageSpec:
 
     @property
     def buildtool_dependencies(self) -> list[str]:
-        return ['ament_cmake'] if self.build_type == 'ament_cmake' else []
+        if self.build_type != 'ament_cmake':
+            return []
+        # A C++ library's CMakeLists uses ament_cmake_ros (shared or static, as upstream).
+        return ['ament_cmake_ros'] if self.library_name else ['ament_cmake']
 
     @property
     def test_dependencies(self) -> list[str]:
@@ -87,9 +90,9 @@ def validate(spec: PackageSpec) -> None:
         if value is not None and not _IDENTIFIER.match(value):
             raise CliError(f"Invalid {option} '{value}': it must be a C/Python identifier "
                            '(letters, digits and underscores, not starting with a digit)')
-    if spec.library_name and spec.build_type != 'ament_python':
-        raise CliError('Invalid --library-name: C++ library templates are not provided here '
-                       '(no rclcpp on PyPI); use it with --build-type ament_python')
+    if spec.library_name and spec.build_type == 'cmake':
+        raise CliError('Invalid --library-name: with --build-type cmake no library template '
+                       'is provided here; use ament_cmake or ament_python')
     for dependency in spec.dependencies:
         if not _DEPENDENCY.match(dependency):
             raise CliError(f"Invalid dependency '{dependency}': allowed are letters, digits "
@@ -182,6 +185,38 @@ def _find_dependencies(spec: PackageSpec) -> str:
             '# find_package(<dependency> REQUIRED)\n')
 
 
+def _target_dependencies(target: str, spec: PackageSpec) -> str:
+    if not spec.dependencies:
+        return ''
+    return (f'ament_target_dependencies(\n  {target}\n'
+            + ''.join(f'  "{dep}"\n' for dep in spec.dependencies) + ')\n')
+
+
+def _ament_cmake_library(spec: PackageSpec) -> dict[str, str]:
+    """The CMakeLists parts of a C++ library (--library-name): found, built, exported."""
+    library, name = spec.library_name, spec.name
+    if not library:
+        return {'library_find': '', 'library_block': '', 'library_exports': ''}
+    block = (f'\nadd_library({library} src/{library}.cpp)\n'
+             f'add_library({name}::{library} ALIAS {library})\n'
+             f'target_compile_features({library} PUBLIC c_std_99 cxx_std_17)'
+             '  # Require C99 and C++17\n'
+             f'target_include_directories({library} PUBLIC\n'
+             '  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>\n'
+             '  $<INSTALL_INTERFACE:include/${PROJECT_NAME}>)\n'
+             + _target_dependencies(library, spec)
+             + '\n# The visibility macros export (not import) while the library is built.\n'
+             f'target_compile_definitions({library} PRIVATE "{name.upper()}_BUILDING_LIBRARY")\n'
+             '\ninstall(\n  DIRECTORY include/\n  DESTINATION include/${PROJECT_NAME}\n)\n'
+             f'install(\n  TARGETS {library}\n  EXPORT export_${{PROJECT_NAME}}\n'
+             '  ARCHIVE DESTINATION lib\n  LIBRARY DESTINATION lib\n  RUNTIME DESTINATION bin\n)\n')
+    exports = ('\nament_export_include_directories(\n  "include/${PROJECT_NAME}"\n)\n'
+               f'ament_export_libraries(\n  {library}\n)\n'
+               'ament_export_targets(\n  export_${PROJECT_NAME}\n)\n')
+    return {'library_find': 'find_package(ament_cmake_ros REQUIRED)\n',
+            'library_block': block, 'library_exports': exports}
+
+
 def _ament_cmake_node(spec: PackageSpec) -> str:
     node = spec.node_name
     if not node:
@@ -189,12 +224,13 @@ def _ament_cmake_node(spec: PackageSpec) -> str:
     block = (f'\nadd_executable({node} src/{node}.cpp)\n'
              f'target_include_directories({node} PUBLIC\n'
              '  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>\n'
-             '  $<INSTALL_INTERFACE:include/${PROJECT_NAME}>)\n'
-             f'target_compile_features({node} PUBLIC c_std_99 cxx_std_17)'
-             '  # Require C99 and C++17\n')
-    if spec.dependencies:
-        block += (f'ament_target_dependencies(\n  {node}\n'
-                  + ''.join(f'  "{dep}"\n' for dep in spec.dependencies) + ')\n')
+             '  $<INSTALL_INTERFACE:include/${PROJECT_NAME}>)\n')
+    if spec.library_name:  # the library brings the compile features and dependencies
+        return block + (f'target_link_libraries({node} {spec.library_name})\n'
+                        f'\ninstall(TARGETS {node}\n  DESTINATION lib/${{PROJECT_NAME}})\n')
+    block += (f'target_compile_features({node} PUBLIC c_std_99 cxx_std_17)'
+              '  # Require C99 and C++17\n')
+    block += _target_dependencies(node, spec)
     return block + f'\ninstall(TARGETS {node}\n  DESTINATION lib/${{PROJECT_NAME}})\n'
 
 
@@ -272,7 +308,7 @@ def create(spec: PackageSpec, license_files: list[str] | None) -> None:
     elif spec.build_type == 'ament_cmake':
         write.file('ament_cmake/CMakeLists.txt.in', package_dir, 'CMakeLists.txt',
                    find_dependencies=_find_dependencies(spec),
-                   node_block=_ament_cmake_node(spec))
+                   node_block=_ament_cmake_node(spec), **_ament_cmake_library(spec))
     else:
         write.file('cmake/CMakeLists.txt.in', package_dir, 'CMakeLists.txt',
                    find_dependencies=_find_dependencies(spec), node_block=_cmake_node(spec))
@@ -284,7 +320,23 @@ def create(spec: PackageSpec, license_files: list[str] | None) -> None:
                    f'{spec.name}ConfigVersion.cmake.in')
     if spec.build_type != 'ament_python' and spec.node_name:
         write.file('common/main.cpp.in', source_dir, spec.node_name + '.cpp')
+    if spec.build_type == 'ament_cmake' and spec.library_name:
+        _write_cpp_library(write, spec, source_dir, os.path.join(package_dir, 'include',
+                                                                 spec.name))
 
     if license_files is not None:
         with open(os.path.join(package_dir, 'LICENSE'), 'w', encoding='utf-8') as target:
             target.write(''.join(license_files))
+
+
+def _write_cpp_library(write: _Writer, spec: PackageSpec, source_dir: str,
+                       include_dir: str) -> None:
+    """An empty C++ class `<Library_Name>` in the package's namespace, as upstream's."""
+    library = spec.library_name or ''
+    values = {'library_name': library,
+              'class_name': library.replace('_', ' ').title().replace(' ', ''),
+              'guard': f'{spec.name.upper()}__{library.upper()}_HPP_'}
+    write.file('cpp/library.hpp.in', include_dir, library + '.hpp', **values)
+    write.file('cpp/library.cpp.in', source_dir, library + '.cpp', **values)
+    write.file('cpp/visibility_control.h.in', include_dir, 'visibility_control.h',
+               package_upper=spec.name.upper())

@@ -128,6 +128,10 @@ class GraphCache:
         from ros2cli_lite.graph import endpoint_texts
         return self._with_node(lambda node: endpoint_texts(node, topic))
 
+    def endpoint_records(self, topic: str) -> tuple[list[dict], list[dict]]:
+        from ros2cli_lite.graph import endpoint_records
+        return self._with_node(lambda node: endpoint_records(node, topic))
+
     def context(self) -> Any:
         """The participant's context once discovery has settled, else None (not waited for:
         until then the CLI runs its verbs itself)."""
@@ -194,6 +198,9 @@ class DaemonServer(socketserver.ThreadingUnixStreamServer):
             return {'ok': True, 'graph': self.cache.snapshot(bool(request.get('detail')))}
         if op == 'endpoints':
             publishers, subscribers = self.cache.endpoints(str(request.get('topic', '')))
+            return {'ok': True, 'publishers': publishers, 'subscribers': subscribers}
+        if op == 'endpoint_records':
+            publishers, subscribers = self.cache.endpoint_records(str(request.get('topic', '')))
             return {'ok': True, 'publishers': publishers, 'subscribers': subscribers}
         return {'ok': False, 'error': f'unknown request {op!r}'}
 

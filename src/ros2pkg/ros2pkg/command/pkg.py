@@ -100,8 +100,8 @@ def create_verb(args: argparse.Namespace) -> int:
 
 
 def _package_names() -> list[str]:
-    from ament_index_python.packages import get_packages_with_prefixes
-    return sorted(get_packages_with_prefixes())
+    from ros2pkg.api import get_package_names
+    return sorted(get_package_names())
 
 
 def executables_verb(args: argparse.Namespace) -> int:
@@ -130,14 +130,14 @@ def _share_directory(name: str) -> str:
 
 
 def prefix_verb(args: argparse.Namespace) -> int:
-    from ament_index_python.packages import PackageNotFoundError, get_package_prefix
+    from ros2pkg.api import get_prefix_path
     if args.share:
         print(_share_directory(args.package_name))
         return 0
-    try:
-        print(get_package_prefix(args.package_name))
-    except (PackageNotFoundError, ValueError):
-        raise CliError(PACKAGE_NOT_FOUND) from None
+    prefix = get_prefix_path(args.package_name)
+    if prefix is None:
+        raise CliError(PACKAGE_NOT_FOUND)
+    print(prefix)
     return 0
 
 

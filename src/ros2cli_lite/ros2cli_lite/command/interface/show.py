@@ -47,7 +47,9 @@ def definition_path(identifier: str) -> str:
         raise CliError(f"Unknown package '{package}'")
     path = os.path.join(prefix, 'share', package, kind, f'{name}.{kind}')
     if kind not in KINDS or not os.path.isfile(path):
-        raise CliError(f"Could not find the interface '{path}'")
+        # rosidl_runtime_py's message: the last path tried is the .idl one.
+        idl = os.path.join(prefix, 'share', package, kind, f'{name}.idl')
+        raise CliError(f"Could not find the interface '{idl}'")
     return path
 
 

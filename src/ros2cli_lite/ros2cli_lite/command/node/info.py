@@ -34,7 +34,8 @@ def main(args: argparse.Namespace) -> int | str:
     from ros2cli_lite.graph import graph_source
     with graph_source(not args.no_daemon, args.spin_time) as source:
         graph = source.graph(detail=True, ready=lambda g: _known(g, args.node_name))
-    count = graph.node_names(True).count(args.node_name)
+    # A hidden node is only found with --include-hidden, as upstream (exit 1 without it).
+    count = graph.node_names(args.include_hidden).count(args.node_name)
     info = graph.node(args.node_name)
     if not count or info is None:
         return f"Unable to find node '{args.node_name}'"

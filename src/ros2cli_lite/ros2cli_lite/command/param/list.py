@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import re
 
 from ros2cli_lite.command.param.api import TYPE_NAMES, call, find_node
 
@@ -15,6 +16,18 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='Only list parameters with the provided prefixes')
     parser.add_argument('--param-type', action='store_true',
                         help='Print parameter types with parameter names')
+    parser.add_argument('--filter', nargs=1, type=_regex,
+                        help='Only parameters matching the regex expression will be showed. '
+                        'Supports `re` regex syntax.')
+
+
+def _regex(text: str) -> re.Pattern:
+    """argparse type of --filter: a usage error naming what is wrong with the pattern."""
+    try:
+        return re.compile(text)
+    except re.error as error:
+        raise argparse.ArgumentTypeError(
+            f"'{text}' is not a regular expression: {error}") from None
 
 
 def runs_in_daemon(_args: argparse.Namespace) -> bool:
@@ -54,7 +67,9 @@ def _list_parameters(args: argparse.Namespace, targets: list[str]) -> None:
             request.prefixes = list(args.param_prefixes)
             response = call(node, ListParameters, f'{target}/list_parameters', request)
             names = sorted(response.result.names)
-            if not args.node_name:
+            if args.filter is not None:  # matched at the start of the name, as upstream
+                names = [name for name in names if args.filter[0].match(name)]
+            if not args.node_name and names:
                 print(f'{target}:')
             types = {}
             if args.param_type:

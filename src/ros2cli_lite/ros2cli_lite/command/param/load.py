@@ -26,7 +26,8 @@ def _read_parameter_file(path: str, use_wildcard: bool) -> list:
     from ros2cli_lite.api import CliError
     from ros2cli_lite.convert import yaml_problem
     if not os.path.isfile(path):
-        raise CliError(f"Parameter file '{path}' does not exist")
+        # The OS's words, as upstream's (its open() error): 'No such file or directory'.
+        raise CliError(f"Parameter file '{path}': No such file or directory")
     try:
         return list(parameter_dict_from_yaml_file(path, use_wildcard).values())
     except yaml.YAMLError as error:
@@ -42,10 +43,11 @@ def main(args: argparse.Namespace) -> int | str:
     from rcl_interfaces.srv import SetParameters
 
     from ros2cli_lite.node import cli_node
-    parameters = _read_parameter_file(args.parameter_file, not args.no_use_wildcard)
+    # The node first, then the file, as upstream: an unknown node is 'Node not found'.
     target = find_node(args)
     if target is None:
         return 'Node not found'
+    parameters = _read_parameter_file(args.parameter_file, not args.no_use_wildcard)
     with cli_node(spin_time=args.spin_time) as node:
         response = call(node, SetParameters, f'{target}/set_parameters',
                          SetParameters.Request(parameters=parameters))

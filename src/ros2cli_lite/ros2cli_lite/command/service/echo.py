@@ -16,8 +16,36 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         "'/add_two_ints')")
     parser.add_argument('service_type', nargs='?', help="Type of the ROS service (e.g. "
                         "'example_interfaces/srv/AddTwoInts')")
+    parser.add_argument('--csv', action='store_true', default=False,
+                        help='Output all recursive fields separated by commas (e.g. for plotting).')
+    parser.add_argument('--full-length', '-f', action='store_true',
+                        help='Output all elements for arrays, bytes, and string with a length > '
+                        "'--truncate-length', by default they are truncated after "
+                        "'--truncate-length' elements with '...''")
+    parser.add_argument('--truncate-length', '-l', type=unsigned_int,
+                        default=DEFAULT_TRUNCATE_LENGTH,
+                        help='The length to truncate arrays, bytes, and string to '
+                        f'(default: {DEFAULT_TRUNCATE_LENGTH})')
+    parser.add_argument('--no-arr', action='store_true',
+                        help="Don't print array fields of messages")
+    parser.add_argument('--no-str', action='store_true',
+                        help="Don't print string fields of messages")
     parser.add_argument('--flow-style', action='store_true',
                         help='Print collections in the block style (not available with csv format)')
+
+
+DEFAULT_TRUNCATE_LENGTH = 128
+
+
+def unsigned_int(text: str) -> int:
+    """argparse type of --truncate-length: ros2cli's message for anything else."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if value < 0:
+        raise argparse.ArgumentTypeError('value must be non-negative integer')
+    return value
 
 
 EVENT_TYPES = {0: 'REQUEST_SENT', 1: 'REQUEST_RECEIVED', 2: 'RESPONSE_SENT',
@@ -34,7 +62,7 @@ def main(args: argparse.Namespace) -> int | str:
     from ros2cli_lite.api import import_type
     from ros2cli_lite.convert import to_yaml
     from ros2cli_lite.node import cli_node, spin_once
-    from rosidl_runtime_py import message_to_ordereddict
+    from rosidl_runtime_py import message_to_csv, message_to_ordereddict
     type_name = args.service_type
     if type_name is None:
         found, _ = lookup(args)
@@ -51,8 +79,14 @@ def main(args: argparse.Namespace) -> int | str:
     with cli_node(spin_time=args.spin_time) as node:
         topic = args.service_name.rstrip('/') + '/_service_event'
 
+        options = {'truncate_length': None if args.full_length else args.truncate_length,
+                   'no_arr': args.no_arr, 'no_str': args.no_str}
+
         def on_event(event) -> None:
-            data = message_to_ordereddict(event)
+            if args.csv:
+                print(message_to_csv(event, **options), flush=True)
+                return
+            data = message_to_ordereddict(event, **options)
             data['info']['event_type'] = EVENT_TYPES.get(data['info']['event_type'],
                                                          data['info']['event_type'])
             print(to_yaml(data, args.flow_style) + '---', flush=True)
