@@ -348,24 +348,36 @@ class BagReader:
                            f'({one_line(error)}); an MCAP bag can be salvaged with '
                            f"'ros2 bag reindex {path}'") from None
 
-    def messages(self, topics: set[str] | None = None, start_ns: int = 0
+    def messages(self, topics: set[str] | None = None, start_ns: int = 0,
+                 order: str = 'time', end_ns: int | None = None
                  ) -> Iterator[tuple[str, int, bytes]]:
         """(topic, receive stamp, data), file after file, each file in time order.
 
+        `order` 'reverse' goes from the last file's last message back to the first, from
+        `end_ns` (inclusive) down; 'file' gives each (MCAP) file's messages as written.
         Each storage file is read with its own topics: rosbags' reader matches them with
         metadata.yaml's by their QoS text too, which older bags (version 4 to 8, integer
         policies) spell differently, and then it finds no message at all.
         """
         directory = self.reader.storage  # rosbags' DirectoryReader: one storage per file
         message_compressed = directory.metadata.compression_mode == 'message'
+        storages = directory.storages[::-1] if order == 'reverse' else directory.storages
+        stop = None if end_ns is None else end_ns + 1
         try:
-            for storage in directory.storages:
+            for storage in storages:
                 connections = [c for c in storage.connections
                                if topics is None or c.topic in topics]
                 if not connections:
                     continue
-                for connection, stamp, data in storage.messages(connections,
-                                                                start_ns or None, None):
+                if order == 'file':
+                    found = storage.messages_scan(connections, start_ns or None, stop)
+                elif order == 'reverse':
+                    # rosbags reads forwards only: one file at a time is held to turn it.
+                    found = reversed(list(storage.messages(connections, start_ns or None,
+                                                           stop)))
+                else:
+                    found = storage.messages(connections, start_ns or None, stop)
+                for connection, stamp, data in found:
                     if message_compressed:
                         data = _zstd_decompress(data)
                     yield connection.topic, stamp, bytes(data)
