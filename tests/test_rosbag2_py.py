@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import datetime
 import hashlib
+import os
 import threading
 from pathlib import Path
 
@@ -210,3 +211,37 @@ def test_recorder_and_player_run_in_a_thread_and_cancel(tmp_path, ros_env, probe
     assert not playing.is_alive() and heard[0].data == 'in a thread'
     with pytest.raises(RuntimeError, match="Invalid log level 'loud'"):
         rosbag2_py.Player('loud')
+
+
+def test_definitions_of_interfaces_written_in_idl(tmp_path, monkeypatch):
+    """A type with no .msg file, or depending on one, is defined from .idl files (ros2idl);
+    a service's dependency without .msg is appended as IDL (Jazzy's definition source)."""
+    share = tmp_path / 'share' / 'idl_pkg'
+    (share / 'msg').mkdir(parents=True)
+    (share / 'srv').mkdir()
+    index = tmp_path / 'share' / 'ament_index' / 'resource_index' / 'packages'
+    index.mkdir(parents=True)
+    (index / 'idl_pkg').write_text('')
+    inner = 'module idl_pkg {\n  module msg {\n    struct Inner {\n      float x;\n    };\n  };\n'
+    inner += '};\n'
+    (share / 'msg' / 'Inner.idl').write_text(inner)
+    outer = '#include "idl_pkg/msg/Inner.idl"\nmodule idl_pkg { /* Outer */ };\n'
+    (share / 'msg' / 'Outer.msg').write_text('Inner a\n')
+    (share / 'msg' / 'Outer.idl').write_text(outer)
+    (share / 'srv' / 'Get.srv').write_text('Inner req\n---\nbool ok\n')
+    monkeypatch.setenv('AMENT_PREFIX_PATH', f"{tmp_path}:{os.environ['AMENT_PREFIX_PATH']}")
+    rule = '=' * 80 + '\n'
+    source = rosbag2_py.LocalMessageDefinitionSource()
+
+    found = source.get_full_text('idl_pkg/msg/Outer')
+    assert (found.encoding, found.encoded_message_definition) == (
+        'ros2idl', f'{rule}IDL: idl_pkg/msg/Outer\n{outer}\n{rule}IDL: idl_pkg/msg/Inner\n{inner}')
+    found = source.get_full_text('idl_pkg/srv/Get')
+    assert (found.encoding, found.encoded_message_definition) == (
+        'ros2idl', f'{rule}SRV: idl_pkg/srv/Get\nInner req\n---\nbool ok\n\n'
+        f'{rule}MSG: idl_pkg/Inner\n\n{rule}IDL: idl_pkg/Inner\n{inner}')
+    found = source.get_full_text('std_msgs/msg/String')  # .msg files as before
+    assert found.encoding == 'ros2msg' and found.encoded_message_definition.endswith(
+        '\nstring data\n')
+    found = source.get_full_text('no_such_pkg/msg/X')
+    assert (found.encoding, found.encoded_message_definition) == ('unknown', '')
