@@ -24,7 +24,7 @@ def write_bag(path: Path, storage_id: str, compression: str = '') -> None:
     """/a and /b, five messages each, interleaved at 100 ns steps."""
     if compression:
         writer = rosbag2_py.SequentialCompressionWriter(rosbag2_py.CompressionOptions(
-            compression_format='zstd',
+            compression_format='zstd', compression_queue_size=0,  # 0: drop no message
             compression_mode=rosbag2_py.compression_mode_from_string(compression)))
     else:
         writer = rosbag2_py.SequentialWriter()
@@ -245,3 +245,43 @@ def test_definitions_of_interfaces_written_in_idl(tmp_path, monkeypatch):
         '\nstring data\n')
     found = source.get_full_text('no_such_pkg/msg/X')
     assert (found.encoding, found.encoded_message_definition) == ('unknown', '')
+
+
+def compressing_writer(path: Path, mode: str, queue_size: int, threads: int):
+    writer = rosbag2_py.SequentialCompressionWriter(rosbag2_py.CompressionOptions(
+        compression_format='zstd', compression_mode=rosbag2_py.compression_mode_from_string(mode),
+        compression_queue_size=queue_size, compression_threads=threads))
+    writer.open(rosbag2_py.StorageOptions(uri=str(path), storage_id='mcap'),
+                rosbag2_py.ConverterOptions('cdr', 'cdr'))
+    writer.create_topic(rosbag2_py.TopicMetadata(
+        id=0, name='/big', type='std_msgs/msg/String', serialization_format='cdr'))
+    return writer
+
+
+def test_compression_queue_size_and_threads_take_effect(tmp_path):
+    """A queue of 1 drops what one compression thread cannot keep up with; a queue of 0
+    drops nothing; in FILE mode a file is compressed as soon as a split closes it."""
+    messages = [serialize_message(String(data=f'{i} ' + 'payload ' * 40_000)) for i in range(300)]
+    counts = {}
+    for queue_size, threads in ((1, 1), (0, 2)):
+        bag = tmp_path / f'queue_{queue_size}'
+        writer = compressing_writer(bag, 'message', queue_size, threads)
+        for i, data in enumerate(messages):
+            writer.write('/big', data, 1000 + i)
+        writer.close()
+        counts[queue_size] = rosbag2_py.Info().read_metadata(str(bag), '').message_count
+    assert counts[0] == 300 and 0 < counts[1] < 300, counts
+
+    bag = tmp_path / 'files'
+    writer = compressing_writer(bag, 'file', 1, 1)
+    writer.write('/big', messages[0], 1000)
+    writer.split_bagfile()
+    # The original goes once its .zstd is complete.
+    wait_until(lambda: not (bag / 'files_0.mcap').exists(), 10,
+               'the closed file compressed while the bag is still open')
+    assert (bag / 'files_0.mcap.zstd').is_file()
+    writer.write('/big', messages[1], 2000)
+    writer.close()
+    metadata = rosbag2_py.Info().read_metadata(str(bag), '')
+    assert metadata.relative_file_paths == ['files_0.mcap.zstd', 'files_1.mcap.zstd']
+    assert [s for _, _, s in read_all(open_reader(bag))] == [1000, 2000]
