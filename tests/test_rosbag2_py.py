@@ -56,7 +56,7 @@ def open_reader(path: Path, storage_id: str = ''):
 
 @pytest.mark.parametrize(('storage_id', 'compression'),
                          [('mcap', ''), ('sqlite3', ''), ('mcap', 'message'),
-                          ('sqlite3', 'file')])
+                          ('sqlite3', 'file'), ('sqlite3', 'message')])
 def test_write_read_filter_seek_and_metadata(tmp_path, storage_id, compression):
     bag = tmp_path / 'bag'
     write_bag(bag, storage_id, compression)

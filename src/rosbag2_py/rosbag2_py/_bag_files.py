@@ -136,14 +136,17 @@ class BagWriter:
               sequence: int = 0) -> None:
         """One message; `sequence` is the publisher's sequence number (0: unknown)."""
         if self.compression_mode == 'MESSAGE':
-            self._compression().put_message(topic, bytes(data), recv_ns, send_ns, sequence)
+            pool = self._compression()
+            pool.put_message(topic, bytes(data), recv_ns, send_ns, sequence)
+            for compressed in pool.take_compressed():
+                self._store(*compressed)
         else:
             self._store(topic, data, recv_ns, send_ns, sequence)
 
     def _compression(self) -> CompressionPool:
         if self._pool is None:
             self._pool = CompressionPool(self.compression_threads, self.compression_queue_size,
-                                         self.compression_priority, self._store)
+                                         self.compression_priority)
         return self._pool
 
     def _store(self, topic: str, data: bytes, recv_ns: int, send_ns: int,
@@ -204,6 +207,8 @@ class BagWriter:
         self.closed = True
         if self.compression_mode == 'MESSAGE' and self._pool is not None:
             self._pool.close()
+            for compressed in self._pool.take_compressed():
+                self._store(*compressed)
         with self._lock:
             self._backend.close(self._metadata())
         if self.compression_mode == 'FILE':

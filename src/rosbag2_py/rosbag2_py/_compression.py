@@ -2,7 +2,9 @@
 
 `threads` workers (0: one per CPU core), each at the nice value `priority`, take work from two
 queues: messages to compress (MESSAGE mode) and closed storage files (FILE mode: a file is
-compressed as soon as a split closes it, while recording goes on). As rosbag2's
+compressed as soon as a split closes it, while recording goes on). Compressed messages are
+handed back (take_compressed) for the writer's own thread to store: an SQLite3 connection
+may only be used by the thread that opened it. As rosbag2's
 SequentialCompressionWriter, a message queue longer than `queue_size` drops its oldest
 messages; with `queue_size` 0 nothing is dropped and the writer waits while more than
 `threads` messages are queued.
@@ -27,13 +29,12 @@ def compress_file(path: str) -> None:
 
 
 class CompressionPool:
-    def __init__(self, threads: int, queue_size: int, priority: int,
-                 store: Callable[..., None]) -> None:
+    def __init__(self, threads: int, queue_size: int, priority: int) -> None:
         self.threads = threads if threads > 0 else (os.cpu_count() or 1)
         self.queue_size = max(0, queue_size)
         self.priority = priority
         self.dropped = 0
-        self._store = store  # writes one compressed message: store(*message)
+        self._done: collections.deque[tuple[Any, ...]] = collections.deque()
         self._messages: collections.deque[tuple[Any, ...]] = collections.deque()
         self._files: collections.deque[Callable[[], None]] = collections.deque()
         self._condition = threading.Condition()
@@ -83,13 +84,20 @@ class CompressionPool:
             try:
                 if message is not None:
                     topic, data, *rest = message
-                    self._store(topic, compressor.compress(data), *rest)
+                    self._done.append((topic, compressor.compress(data), *rest))
                 elif work is not None:
                     work()
             except Exception as error:  # surfaced by close(): the writer names it
                 with self._condition:
                     self._errors.append(error)
                     self._condition.notify_all()
+
+    def take_compressed(self) -> list[tuple[Any, ...]]:
+        """The messages compressed so far (topic, data, ...), each handed out once."""
+        taken = []
+        while self._done:
+            taken.append(self._done.popleft())
+        return taken
 
     def close(self) -> None:
         """Finish what is queued, end the threads; the first failure is raised here."""
