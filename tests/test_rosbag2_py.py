@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import datetime
 import hashlib
+import os
 import threading
 from pathlib import Path
 
@@ -23,7 +24,7 @@ def write_bag(path: Path, storage_id: str, compression: str = '') -> None:
     """/a and /b, five messages each, interleaved at 100 ns steps."""
     if compression:
         writer = rosbag2_py.SequentialCompressionWriter(rosbag2_py.CompressionOptions(
-            compression_format='zstd',
+            compression_format='zstd', compression_queue_size=0,  # 0: drop no message
             compression_mode=rosbag2_py.compression_mode_from_string(compression)))
     else:
         writer = rosbag2_py.SequentialWriter()
@@ -55,7 +56,7 @@ def open_reader(path: Path, storage_id: str = ''):
 
 @pytest.mark.parametrize(('storage_id', 'compression'),
                          [('mcap', ''), ('sqlite3', ''), ('mcap', 'message'),
-                          ('sqlite3', 'file')])
+                          ('sqlite3', 'file'), ('sqlite3', 'message')])
 def test_write_read_filter_seek_and_metadata(tmp_path, storage_id, compression):
     bag = tmp_path / 'bag'
     write_bag(bag, storage_id, compression)
@@ -210,3 +211,77 @@ def test_recorder_and_player_run_in_a_thread_and_cancel(tmp_path, ros_env, probe
     assert not playing.is_alive() and heard[0].data == 'in a thread'
     with pytest.raises(RuntimeError, match="Invalid log level 'loud'"):
         rosbag2_py.Player('loud')
+
+
+def test_definitions_of_interfaces_written_in_idl(tmp_path, monkeypatch):
+    """A type with no .msg file, or depending on one, is defined from .idl files (ros2idl);
+    a service's dependency without .msg is appended as IDL (Jazzy's definition source)."""
+    share = tmp_path / 'share' / 'idl_pkg'
+    (share / 'msg').mkdir(parents=True)
+    (share / 'srv').mkdir()
+    index = tmp_path / 'share' / 'ament_index' / 'resource_index' / 'packages'
+    index.mkdir(parents=True)
+    (index / 'idl_pkg').write_text('')
+    inner = 'module idl_pkg {\n  module msg {\n    struct Inner {\n      float x;\n    };\n  };\n'
+    inner += '};\n'
+    (share / 'msg' / 'Inner.idl').write_text(inner)
+    outer = '#include "idl_pkg/msg/Inner.idl"\nmodule idl_pkg { /* Outer */ };\n'
+    (share / 'msg' / 'Outer.msg').write_text('Inner a\n')
+    (share / 'msg' / 'Outer.idl').write_text(outer)
+    (share / 'srv' / 'Get.srv').write_text('Inner req\n---\nbool ok\n')
+    monkeypatch.setenv('AMENT_PREFIX_PATH', f"{tmp_path}:{os.environ['AMENT_PREFIX_PATH']}")
+    rule = '=' * 80 + '\n'
+    source = rosbag2_py.LocalMessageDefinitionSource()
+
+    found = source.get_full_text('idl_pkg/msg/Outer')
+    assert (found.encoding, found.encoded_message_definition) == (
+        'ros2idl', f'{rule}IDL: idl_pkg/msg/Outer\n{outer}\n{rule}IDL: idl_pkg/msg/Inner\n{inner}')
+    found = source.get_full_text('idl_pkg/srv/Get')
+    assert (found.encoding, found.encoded_message_definition) == (
+        'ros2idl', f'{rule}SRV: idl_pkg/srv/Get\nInner req\n---\nbool ok\n\n'
+        f'{rule}MSG: idl_pkg/Inner\n\n{rule}IDL: idl_pkg/Inner\n{inner}')
+    found = source.get_full_text('std_msgs/msg/String')  # .msg files as before
+    assert found.encoding == 'ros2msg' and found.encoded_message_definition.endswith(
+        '\nstring data\n')
+    found = source.get_full_text('no_such_pkg/msg/X')
+    assert (found.encoding, found.encoded_message_definition) == ('unknown', '')
+
+
+def compressing_writer(path: Path, mode: str, queue_size: int, threads: int):
+    writer = rosbag2_py.SequentialCompressionWriter(rosbag2_py.CompressionOptions(
+        compression_format='zstd', compression_mode=rosbag2_py.compression_mode_from_string(mode),
+        compression_queue_size=queue_size, compression_threads=threads))
+    writer.open(rosbag2_py.StorageOptions(uri=str(path), storage_id='mcap'),
+                rosbag2_py.ConverterOptions('cdr', 'cdr'))
+    writer.create_topic(rosbag2_py.TopicMetadata(
+        id=0, name='/big', type='std_msgs/msg/String', serialization_format='cdr'))
+    return writer
+
+
+def test_compression_queue_size_and_threads_take_effect(tmp_path):
+    """A queue of 1 drops what one compression thread cannot keep up with; a queue of 0
+    drops nothing; in FILE mode a file is compressed as soon as a split closes it."""
+    messages = [serialize_message(String(data=f'{i} ' + 'payload ' * 40_000)) for i in range(300)]
+    counts = {}
+    for queue_size, threads in ((1, 1), (0, 2)):
+        bag = tmp_path / f'queue_{queue_size}'
+        writer = compressing_writer(bag, 'message', queue_size, threads)
+        for i, data in enumerate(messages):
+            writer.write('/big', data, 1000 + i)
+        writer.close()
+        counts[queue_size] = rosbag2_py.Info().read_metadata(str(bag), '').message_count
+    assert counts[0] == 300 and 0 < counts[1] < 300, counts
+
+    bag = tmp_path / 'files'
+    writer = compressing_writer(bag, 'file', 1, 1)
+    writer.write('/big', messages[0], 1000)
+    writer.split_bagfile()
+    # The original goes once its .zstd is complete.
+    wait_until(lambda: not (bag / 'files_0.mcap').exists(), 10,
+               'the closed file compressed while the bag is still open')
+    assert (bag / 'files_0.mcap.zstd').is_file()
+    writer.write('/big', messages[1], 2000)
+    writer.close()
+    metadata = rosbag2_py.Info().read_metadata(str(bag), '')
+    assert metadata.relative_file_paths == ['files_0.mcap.zstd', 'files_1.mcap.zstd']
+    assert [s for _, _, s in read_all(open_reader(bag))] == [1000, 2000]

@@ -15,6 +15,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
+from rosbag2_py._compression import CompressionPool, compress_file
 from rosbag2_py._definitions import full_text
 from rosbag2_py._metadata_io import (
     BagError,
@@ -82,7 +83,12 @@ class BagWriter:
                            f"{', '.join(COMPRESSION_FORMATS)})")
         self.compression_mode = compression_mode
         self.compression_format = compression_format if compression_mode else ''
-        self.compression_priority = 0  # the nice value of the file compression thread
+        # rosbag2's compression threads (see _compression.py), started at the first use.
+        self.compression_priority = 0
+        self.compression_threads = 0
+        self.compression_queue_size = 1
+        self._pool: CompressionPool | None = None
+        self._lock = threading.RLock()  # compression threads write and close files too
         self.uri = uri
         self.storage = storage
         self.max_bytes = max_bytes
@@ -129,25 +135,54 @@ class BagWriter:
     def write(self, topic: str, data: bytes, recv_ns: int, send_ns: int,
               sequence: int = 0) -> None:
         """One message; `sequence` is the publisher's sequence number (0: unknown)."""
-        current = self.files[-1]
-        if current.count and (
-                (self.max_ns and recv_ns - current.start >= self.max_ns)
-                or (self.max_bytes and self._backend.size() >= self.max_bytes)):
-            self._backend.close(self._metadata())
-            self._open_file()
-            current = self.files[-1]
         if self.compression_mode == 'MESSAGE':
-            data = _zstd().compress(bytes(data))
-        self._backend.write(self._handles[topic], data, recv_ns, send_ns, sequence)
-        current.add(recv_ns)
-        self.topics[topic].message_count += 1
-        now = time.monotonic()
-        if now - self._last_flush >= FLUSH_PERIOD or self.preset == 'resilient':
-            self.flush()
+            pool = self._compression()
+            pool.put_message(topic, bytes(data), recv_ns, send_ns, sequence)
+            for compressed in pool.take_compressed():
+                self._store(*compressed)
+        else:
+            self._store(topic, data, recv_ns, send_ns, sequence)
+
+    def _compression(self) -> CompressionPool:
+        if self._pool is None:
+            self._pool = CompressionPool(self.compression_threads, self.compression_queue_size,
+                                         self.compression_priority)
+        return self._pool
+
+    def _store(self, topic: str, data: bytes, recv_ns: int, send_ns: int,
+               sequence: int) -> None:
+        with self._lock:
+            current = self.files[-1]
+            if current.count and (
+                    (self.max_ns and recv_ns - current.start >= self.max_ns)
+                    or (self.max_bytes and self._backend.size() >= self.max_bytes)):
+                self.split()
+                current = self.files[-1]
+            self._backend.write(self._handles[topic], data, recv_ns, send_ns, sequence)
+            current.add(recv_ns)
+            self.topics[topic].message_count += 1
+            now = time.monotonic()
+            if now - self._last_flush >= FLUSH_PERIOD or self.preset == 'resilient':
+                self.flush()
+
+    def split(self) -> None:
+        """Close the current storage file (compressed in the background in FILE mode)."""
+        with self._lock:
+            closed = self.files[-1]
+            self._backend.close(self._metadata())
+            if self.compression_mode == 'FILE':
+                self._compression().put_file(lambda: self._compress(closed))
+            self._open_file()
+
+    def _compress(self, stats: _FileStats) -> None:
+        compress_file(os.path.join(self.uri, stats.path))
+        with self._lock:
+            stats.path += '.zstd'
 
     def flush(self) -> None:
-        self._last_flush = time.monotonic()
-        self._backend.flush()
+        with self._lock:
+            self._last_flush = time.monotonic()
+            self._backend.flush()
 
     def _metadata(self) -> BagMetadata:
         files = [f for f in self.files if f.count] or self.files[:1]
@@ -165,50 +200,28 @@ class BagWriter:
             compression_mode=self.compression_mode)
 
     def close(self) -> None:
-        """Finish the storage file and write metadata.yaml (idempotent)."""
+        """Finish the storage file and write metadata.yaml (idempotent); queued messages are
+        compressed and written first, and every file compressed in FILE mode."""
         if self.closed:
             return
         self.closed = True
-        meta = self._metadata()
-        self._backend.close(meta)
+        if self.compression_mode == 'MESSAGE' and self._pool is not None:
+            self._pool.close()
+            for compressed in self._pool.take_compressed():
+                self._store(*compressed)
+        with self._lock:
+            self._backend.close(self._metadata())
         if self.compression_mode == 'FILE':
-            for stats in self.files:
-                _compress_file(os.path.join(self.uri, stats.path), self.compression_priority)
-                stats.path += '.zstd'
-            meta = self._metadata()
-        write_metadata_file(self.uri, meta)
-
-
-def _zstd() -> Any:
-    import zstandard
-    return zstandard.ZstdCompressor()
+            pool = self._compression()
+            last = self.files[-1]
+            pool.put_file(lambda: self._compress(last))
+            pool.close()
+        write_metadata_file(self.uri, self._metadata())
 
 
 def _zstd_decompress(data: bytes) -> bytes:
     import zstandard
     return zstandard.ZstdDecompressor().decompress(bytes(data))
-
-
-def _compress_file(path: str, priority: int = 0) -> None:
-    """`path` replaced by `path.zstd`, as rosbag2's file compression leaves it, compressed in
-    a thread of its own whose nice value is `priority` (rosbag2's compression thread)."""
-    failed: list[OSError] = []
-
-    def compress() -> None:
-        try:
-            if priority:
-                os.setpriority(os.PRIO_PROCESS, threading.get_native_id(), priority)
-            with open(path, 'rb') as source, open(path + '.zstd', 'wb') as target:
-                _zstd().copy_stream(source, target)
-            os.remove(path)
-        except OSError as error:
-            failed.append(error)
-
-    thread = threading.Thread(target=compress, name='rosbag2_compression')
-    thread.start()
-    thread.join()
-    if failed:
-        raise failed[0]
 
 
 class _McapFile:
@@ -348,24 +361,36 @@ class BagReader:
                            f'({one_line(error)}); an MCAP bag can be salvaged with '
                            f"'ros2 bag reindex {path}'") from None
 
-    def messages(self, topics: set[str] | None = None, start_ns: int = 0
+    def messages(self, topics: set[str] | None = None, start_ns: int = 0,
+                 order: str = 'time', end_ns: int | None = None
                  ) -> Iterator[tuple[str, int, bytes]]:
         """(topic, receive stamp, data), file after file, each file in time order.
 
+        `order` 'reverse' goes from the last file's last message back to the first, from
+        `end_ns` (inclusive) down; 'file' gives each (MCAP) file's messages as written.
         Each storage file is read with its own topics: rosbags' reader matches them with
         metadata.yaml's by their QoS text too, which older bags (version 4 to 8, integer
         policies) spell differently, and then it finds no message at all.
         """
         directory = self.reader.storage  # rosbags' DirectoryReader: one storage per file
         message_compressed = directory.metadata.compression_mode == 'message'
+        storages = directory.storages[::-1] if order == 'reverse' else directory.storages
+        stop = None if end_ns is None else end_ns + 1
         try:
-            for storage in directory.storages:
+            for storage in storages:
                 connections = [c for c in storage.connections
                                if topics is None or c.topic in topics]
                 if not connections:
                     continue
-                for connection, stamp, data in storage.messages(connections,
-                                                                start_ns or None, None):
+                if order == 'file':
+                    found = storage.messages_scan(connections, start_ns or None, stop)
+                elif order == 'reverse':
+                    # rosbags reads forwards only: one file at a time is held to turn it.
+                    found = reversed(list(storage.messages(connections, start_ns or None,
+                                                           stop)))
+                else:
+                    found = storage.messages(connections, start_ns or None, stop)
+                for connection, stamp, data in found:
                     if message_compressed:
                         data = _zstd_decompress(data)
                     yield connection.topic, stamp, bytes(data)

@@ -25,6 +25,7 @@ from rosbag2_py._metadata_io import (
     service_type,
 )
 from rosbag2_py._session import SpaceKey
+from rosbag2_py._storage import StorageFilter, filter_selects
 
 DISCOVERY_BOUND = 4.0  # seconds to wait for known subscribers to match a new publisher
 MATCH_SETTLE = 0.6  # seconds the graph must stay unchanged and matched before playing
@@ -55,14 +56,62 @@ class PlayerNode:
         self.pause_started = time.monotonic()
         if not self.paused:
             self.resumed.set()
+        self.finished = threading.Event()
         self.paused_total = 0.0
         self.keys = SpaceKey(self.toggle_paused)
         self.remaps = _remaps(options.topic_remapping_options)
+        self.clock_topics = {_absolute(t) for t in options.clock_topics}
         self.overrides = dict(options.topic_qos_profile_overrides)
         self.publishers: dict[str, Any] = {}
         self.clients: dict[str, tuple[Any, Any]] = {}
         self.warned: set[str] = set()
         self.pending: list[Any] = []  # service requests sent, answers not yet seen
+        self.clock_publisher: Any = None
+        self.first_stamp = reader.meta.starting_time_ns + int(options.start_offset * 1e9)
+        self.begin: float | None = None  # monotonic time of first_stamp in this loop
+        self.until = self._until()
+
+    def _until(self) -> int:
+        """The last receive stamp to play (-1: all), from playback_duration/until_timestamp."""
+        duration = self.options.playback_duration
+        until = int(self.options.playback_until_timestamp)
+        if duration < 0 and until < 0:
+            return -1
+        from_duration = 0 if duration == 0 else self.first_stamp + int(duration * 1e9)
+        return max(from_duration, until)
+
+    # ---- bag time (what /clock says) ----
+    def bag_now(self) -> int:
+        """The player's clock in bag time (ns): stands still while paused or not started."""
+        if self.begin is None:
+            return self.first_stamp
+        now = self.pause_started if self.paused else time.monotonic()
+        elapsed = max(0.0, now - self.begin - self.paused_total)
+        return self.first_stamp + int(elapsed * self.options.rate * 1e9)
+
+    def _publish_clock(self, stamp: int) -> None:
+        from rosgraph_msgs.msg import Clock
+
+        message = Clock()
+        message.clock.sec, message.clock.nanosec = divmod(stamp, 1_000_000_000)
+        self.clock_publisher.publish(message)
+
+    def _start_clock(self, stop: threading.Event) -> None:
+        """/clock publisher (rclcpp's ClockQoS: best effort, depth 1) and, with a frequency,
+        the thread that publishes the bag time at that rate until playing ends."""
+        from rclpy.qos import QoSProfile, ReliabilityPolicy
+        from rosgraph_msgs.msg import Clock
+
+        frequency = float(self.options.clock_publish_frequency)
+        if frequency <= 0.0 and not self.options.clock_publish_on_topic_publish:
+            return
+        self.clock_publisher = self.node.create_publisher(
+            Clock, '/clock', QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT))
+        if frequency > 0.0:
+            def tick() -> None:
+                while not stop.wait(1.0 / frequency) and not self.finished.is_set():
+                    self._publish_clock(self.bag_now())
+            threading.Thread(target=tick, daemon=True, name='clock').start()
 
     # ---- pause ----
     def toggle_paused(self) -> None:
@@ -79,10 +128,16 @@ class PlayerNode:
 
     # ---- endpoints ----
     def _selected(self) -> set[str]:
-        topics = {_absolute(t) for t in self.options.topics_to_filter}
-        events = {_event_topic(s) for s in self.options.services_to_filter}
-        return {t.name for t in self.reader.meta.topics
-                if not (topics or events) or t.name in topics or t.name in events}
+        options = self.options
+        rule = StorageFilter(
+            topics=[_absolute(t) for t in options.topics_to_filter],
+            services_events=[_event_topic(s) for s in options.services_to_filter],
+            regex=options.regex_to_filter,
+            exclude_topics=[_absolute(t) for t in options.exclude_topics_to_filter],
+            exclude_service_events=[_event_topic(s)
+                                    for s in options.exclude_service_events_to_filter],
+            regex_to_exclude=options.exclude_regex_to_filter)
+        return {t.name for t in self.reader.meta.topics if filter_selects(rule, t.name)}
 
     def _create_endpoints(self, selected: set[str]) -> None:
         for topic in self.reader.meta.topics:
@@ -143,7 +198,8 @@ class PlayerNode:
             self.keys.start()
         try:
             self._create_endpoints(self._selected())
-            self.log.info('Playback until timestamp: -1')
+            self._start_clock(stop)
+            self.log.info(f'Playback until timestamp: {self.until}')
             # A paused start leaves discovery the time until resumed; a bag with nothing to
             # publish waits for nobody.
             counts = {t.name: t.message_count for t in self.reader.meta.topics}
@@ -158,6 +214,7 @@ class PlayerNode:
         except BagError as error:
             return str(error)
         finally:
+            self.finished.set()
             self.keys.close()
         return None
 
@@ -174,13 +231,13 @@ class PlayerNode:
         return False
 
     def _play_once(self, stop: threading.Event) -> None:
-        meta = self.reader.meta
-        offset_ns = int(self.options.start_offset * 1e9)
-        first_stamp = meta.starting_time_ns + offset_ns
+        first_stamp = self.first_stamp
+        self.begin = None
         self.paused_total = 0.0
         begin = time.monotonic() + self.options.delay
         if not self._sleep_until(begin, stop):
             return
+        self.begin = begin
         selected = set(self.publishers) | set(self.clients)
         sent = 0
         for topic, stamp, data in self.reader.messages(selected, start_ns=first_stamp):
@@ -190,6 +247,11 @@ class PlayerNode:
                     return
             elif stop.is_set() or (self.burst and sent >= self.burst):
                 return
+            if 0 <= self.until < stamp:
+                return
+            if self.clock_publisher is not None and self.options.clock_publish_on_topic_publish \
+                    and (not self.options.clock_topics or topic in self.clock_topics):
+                self._publish_clock(stamp)
             self._publish(topic, data)
             sent += 1
 
@@ -223,7 +285,10 @@ class PlayerNode:
     def _wait_for_acks(self) -> None:
         from rclpy.duration import Duration
 
-        deadline = time.monotonic() + ACK_BOUND
+        # Unlike Jazzy, which waits only when asked (--wait-for-all-acked), a bounded wait is
+        # the default: a short bag would otherwise end before a reliable subscriber has it.
+        bound = self.options.wait_acked_timeout
+        deadline = time.monotonic() + (bound / 1000.0 if bound >= 0 else ACK_BOUND)
         if self.pending:
             # Spinning takes the answers in: a request is only sure to have arrived then.
             from ros2cli_lite.node import spin_once

@@ -18,9 +18,11 @@ from rosbag2_py._storage import (
     ConverterOptions,
     MessageDefinition,
     ReadOrder,
+    ReadOrderSortBy,
     StorageFilter,
     StorageOptions,
     TopicMetadata,
+    filter_selects,
 )
 
 _ENCODINGS = {'MSG': 'ros2msg', 'IDL': 'ros2idl'}
@@ -36,6 +38,8 @@ class SequentialReader:
         self._filter = StorageFilter()
         self._messages: Iterator[tuple[str, int, bytes]] | None = None
         self._next: tuple[str, int, bytes] | None = None
+        self._order = ReadOrder()
+        self._seek: int | None = None  # where seek() put the reader (None: the bag's edge)
 
     def open(self, storage_options: StorageOptions,
              converter_options: ConverterOptions | None = None) -> None:
@@ -51,7 +55,9 @@ class SequentialReader:
             self._bag = BagReader(uri)
         except BagError as error:
             raise RuntimeError(str(error)) from None
-        self.seek(0)
+        self._order = ReadOrder()
+        self._seek = None
+        self._restart()
 
     def _reader(self) -> BagReader:
         if self._bag is None:
@@ -88,6 +94,12 @@ class SequentialReader:
 
     # ---- reading ----
     def set_filter(self, storage_filter: StorageFilter) -> None:
+        for pattern in (storage_filter.regex, storage_filter.regex_to_exclude):
+            try:
+                re.compile(pattern)
+            except re.error as error:
+                raise RuntimeError(f"'{pattern}' is not a valid regular expression ({error})"
+                                   ) from None
         self._filter = storage_filter
         if self._next is not None and not self._passes(self._next[0]):
             self._next = None
@@ -96,23 +108,37 @@ class SequentialReader:
         self.set_filter(StorageFilter())
 
     def set_read_order(self, read_order: ReadOrder) -> bool:
-        # Received-time order, forwards, is what the storages give (upstream's default).
-        return read_order.sort_by == 0 and not read_order.reverse
+        """Read on in `read_order` from the seek point (else the bag's start, or its end when
+        reversed); False, order unchanged, for an order the bag's storage cannot give (as
+        Jazzy's plugins: published-time order nowhere, file order in MCAP forwards only)."""
+        bag = self._reader()
+        sort_by = int(read_order.sort_by)
+        if sort_by == ReadOrderSortBy.PublishedTimestamp or (
+                sort_by == ReadOrderSortBy.File and (
+                    read_order.reverse or bag.meta.storage_identifier != 'mcap')):
+            return False
+        self._order = ReadOrder(ReadOrderSortBy(sort_by), bool(read_order.reverse))
+        self._restart()
+        return True
 
     def seek(self, timestamp: int) -> None:
-        """Go on from the first message at or after `timestamp` (ns)."""
-        self._messages = self._reader().messages(start_ns=max(0, int(timestamp)))
+        """Go on from the first message at or after `timestamp` (ns); reading in reverse,
+        from the last one at or before it."""
+        self._reader()
+        self._seek = max(0, int(timestamp))
+        self._restart()
+
+    def _restart(self) -> None:
+        bag = self._reader()
+        if self._order.reverse:
+            self._messages = bag.messages(order='reverse', end_ns=self._seek)
+        else:
+            order = 'file' if self._order.sort_by == ReadOrderSortBy.File else 'time'
+            self._messages = bag.messages(start_ns=self._seek or 0, order=order)
         self._next = None
 
     def _passes(self, topic: str) -> bool:
-        rule = self._filter
-        if rule.regex_to_exclude and re.search(rule.regex_to_exclude, topic):
-            return False
-        if topic in rule.exclude_topics or topic in rule.exclude_service_events:
-            return False
-        wanted = rule.topics or rule.services_events or rule.regex
-        return not wanted or topic in rule.topics or topic in rule.services_events or bool(
-            rule.regex and re.search(rule.regex, topic))
+        return filter_selects(self._filter, topic)
 
     def has_next(self) -> bool:
         if self._next is not None:

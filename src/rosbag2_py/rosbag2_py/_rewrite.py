@@ -1,8 +1,10 @@
 """bag_rewrite: input bags copied into output bags chosen by a YAML file (`ros2 bag convert`).
 
-The file holds `output_bags:`, a list of storage options (uri, storage_id, ...) with the
-record options that select topics: `all_topics`/`all`, `topics`, `regex`, `exclude`
-(a regular expression) and `exclude_topics`. Messages go out in received-time order.
+The file holds `output_bags:`, a list of storage options (uri, storage_id,
+max_bagfile_size, max_bagfile_duration, storage_preset_profile) with the record options that
+select topics (`all_topics`/`all`, `topics`, `regex`, `exclude` (a regular expression),
+`exclude_topics`) and compress them (`compression_mode`, `compression_format`,
+`compression_queue_size`, `compression_threads`). Messages go out in received-time order.
 """
 
 from __future__ import annotations
@@ -45,7 +47,6 @@ def _selects(bag: dict, topic: str) -> bool:
 
 def rewrite(inputs: list[StorageOptions], output_options_path: str) -> None:
     from rosbag2_py._reader import SequentialReader
-    from rosbag2_py._writer import SequentialWriter
 
     outputs = _outputs(output_options_path)
     readers = []
@@ -55,8 +56,17 @@ def rewrite(inputs: list[StorageOptions], output_options_path: str) -> None:
         readers.append(reader)
     writers: list[tuple[dict, Any, set[str]]] = []
     for bag in outputs:
-        writer = SequentialWriter()
-        writer.open(StorageOptions(uri=str(bag['uri']), storage_id=str(bag.get('storage_id', ''))))
+        writer = _writer(bag)
+        try:
+            options = StorageOptions(
+                uri=str(bag['uri']), storage_id=str(bag.get('storage_id', '')),
+                max_bagfile_size=int(bag.get('max_bagfile_size', 0)),
+                max_bagfile_duration=int(bag.get('max_bagfile_duration', 0)),
+                storage_preset_profile=str(bag.get('storage_preset_profile', '')))
+        except (TypeError, ValueError):
+            raise RuntimeError(f"Output bag '{bag['uri']}': max_bagfile_size and "
+                               'max_bagfile_duration must be integers') from None
+        writer.open(options)
         writers.append((bag, writer, set()))
     topics = {t.name: t for r in readers for t in r.get_all_topics_and_types()}
     for bag, writer, created in writers:
@@ -75,6 +85,25 @@ def rewrite(inputs: list[StorageOptions], output_options_path: str) -> None:
                 writer.write(topic, data, stamp)
     for _bag, writer, _created in writers:
         writer.close()
+
+
+def _writer(bag: dict) -> Any:
+    """A SequentialWriter, or a compressing one when the bag names a compression mode."""
+    from rosbag2_py._compression_options import CompressionOptions, compression_mode_from_string
+    from rosbag2_py._writer import SequentialCompressionWriter, SequentialWriter
+
+    mode = str(bag.get('compression_mode', '') or '')
+    if not mode or mode.lower() == 'none':
+        return SequentialWriter()
+    try:
+        return SequentialCompressionWriter(CompressionOptions(
+            compression_format=str(bag.get('compression_format', '')),
+            compression_mode=compression_mode_from_string(mode),
+            # A conversion drops nothing unless told to: queue size 0 by default.
+            compression_queue_size=int(bag.get('compression_queue_size', 0)),
+            compression_threads=int(bag.get('compression_threads', 0))))
+    except (TypeError, ValueError) as error:
+        raise RuntimeError(f"Output bag '{bag['uri']}': {error}") from None
 
 
 def _all(reader: Any) -> list[tuple[str, bytes, int]]:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import enum
 import os
+import re
 from typing import Any
 
 from rosbag2_py._bag_files import DEFAULT_STORAGE
@@ -66,6 +67,20 @@ class StorageFilter:
         self.exclude_topics = list(exclude_topics or [])
         self.exclude_service_events = list(exclude_service_events or [])
         self.regex_to_exclude = regex_to_exclude
+
+
+def filter_selects(rule: StorageFilter, topic: str) -> bool:
+    """Whether `rule` lets `topic` through, as Jazzy's storage plugins decide: the lists and
+    `regex` select (nothing given: everything), the exclusions win; regular expressions must
+    match the whole name (std::regex_match)."""
+    if rule.regex_to_exclude and re.fullmatch(rule.regex_to_exclude, topic):
+        return False
+    if topic in rule.exclude_topics or topic in rule.exclude_service_events:
+        return False
+    if not (rule.topics or rule.services_events or rule.regex):
+        return True
+    return topic in rule.topics or topic in rule.services_events or bool(
+        rule.regex and re.fullmatch(rule.regex, topic))
 
 
 class ReadOrderSortBy(enum.IntEnum):

@@ -147,6 +147,8 @@ class Recorder(_Cancellable):
             raise RuntimeError(str(error)) from None
         writer.custom_data = dict(storage_options.custom_data)
         writer.compression_priority = record_options.compression_threads_priority
+        writer.compression_threads = record_options.compression_threads
+        writer.compression_queue_size = record_options.compression_queue_size
 
         def body(node: Any, stop: threading.Event) -> str | None:
             if writer.compression_mode:

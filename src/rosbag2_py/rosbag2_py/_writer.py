@@ -57,6 +57,10 @@ class SequentialWriter:
         except BagError as error:
             raise RuntimeError(str(error)) from None
         self._bag.custom_data = dict(storage_options.custom_data)
+        if compression:
+            self._bag.compression_threads = compression.compression_threads
+            self._bag.compression_queue_size = compression.compression_queue_size
+            self._bag.compression_priority = compression.compression_threads_priority
         _OPEN.add(self)
 
     def _writer(self) -> BagWriter:
@@ -89,9 +93,7 @@ class SequentialWriter:
                   stamp if publish_time_stamp is None else int(publish_time_stamp))
 
     def split_bagfile(self) -> None:
-        bag = self._writer()
-        bag._backend.close(bag._metadata())
-        bag._open_file()
+        self._writer().split()
 
     def take_snapshot(self) -> bool:
         return False  # snapshot mode (a ring buffer in memory) is not available here

@@ -1,4 +1,4 @@
-"""ros2 bag: record, play, burst, info and reindex rosbag2 bags (ros2bag.verb.<verb>)."""
+"""ros2 bag: record, play, burst, info, reindex, convert and list (ros2bag.verb.<verb>)."""
 
 from __future__ import annotations
 
@@ -11,6 +11,8 @@ VERBS = {
     'info': 'Print information about a bag to the screen',
     'reindex': 'Reconstruct metadata file for a bag',
     'burst': 'Burst data from a bag',
+    'convert': 'Given an input bag, write out a new bag with different settings',
+    'list': 'Print information about available plugins to the screen',
 }
 
 
