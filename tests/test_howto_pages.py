@@ -231,17 +231,21 @@ ABSENT_RMW = (r"^\[ERROR\] \[\d+\.\d+\] \[rcl\]: Expected RMW implementation ide
               r"'{}' but instead found 'rmw_fastrtps_cpp', exiting with 102\.")
 
 
-@pytest.mark.parametrize('rmw, command', [
-    ('rmw_connextdds', 'run demo_nodes_cpp talker'),
-    ('rmw_connextdds', 'run demo_nodes_py listener'),
-    ('rmw_cyclonedds_cpp', 'node list --no-daemon'),
+@pytest.mark.parametrize('rmw, command, returncode', [
+    ('rmw_connextdds', 'run demo_nodes_cpp talker', 102),
+    ('rmw_connextdds', 'run demo_nodes_py listener', 102),
+    ('rmw_cyclonedds_cpp', 'node list --no-daemon', 102),
+    # The daemon for these settings dies as it starts: its rcl line is the reason (exit 1).
+    ('rmw_cyclonedds_cpp', 'node list', 1),
 ])
-def test_multiple_rmw_page_names_an_absent_rmw(rmw, command, ros_env) -> None:
+def test_multiple_rmw_page_names_an_absent_rmw(rmw, command, returncode, ros_env) -> None:
     """Only Fast DDS is installed: rcl's own check ends the process with its line and 102."""
-    done = ros2({**ros_env, 'RMW_IMPLEMENTATION': rmw}, *command.split())
-    assert done.returncode == 102, done
+    env = {**ros_env, 'RMW_IMPLEMENTATION': rmw}
+    done = ros2(env, *command.split())
+    stop_daemon(env)
+    assert done.returncode == returncode, done
     assert re.search(ABSENT_RMW.format(rmw), done.stderr, re.M), done.stderr
-    assert 'Traceback' not in done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1, done.stderr  # rcl's line, no traceback
 
 
 def test_multiple_rmw_page_with_the_installed_rmw(launch, ros_env) -> None:
