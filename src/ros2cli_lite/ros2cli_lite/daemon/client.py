@@ -43,19 +43,34 @@ def _exchange(path: Path, message: dict[str, Any], timeout: float) -> dict[str, 
             raise CliError(f'The ros2 daemon did not answer within {timeout:g} s (stop it with '
                            '`ros2 daemon stop`, or use --no-daemon)') from None
         except OSError as error:
-            raise _died(error) from None
+            raise _died(path, error) from None
     if not chunks:
-        raise _died(None)
+        raise _died(path, None)
     try:
         return protocol.decode(b''.join(chunks))
     except protocol.ProtocolError:
-        raise _died(None) from None
+        raise _died(path, None) from None
 
 
-def _died(error: OSError | None) -> CliError:
+def _died(path: Path, error: OSError | None) -> CliError:
+    # A daemon that rcl ended as it started (RMW_IMPLEMENTATION naming an RMW that is not
+    # installed: "Expected RMW implementation identifier of ..., exiting with 102.") left
+    # rcl's one line in its log: that line is the reason, and running again will not help.
+    rcl_error = _last_rcl_error(_log_path(path))
+    if rcl_error:
+        return CliError(rcl_error)
     reason = f' ({error.strerror})' if error is not None and error.strerror else ''
     return CliError(f'The ros2 daemon stopped while answering{reason}; run the command again '
                     'to restart it')
+
+
+def _last_rcl_error(log: Path) -> str | None:
+    try:
+        lines = [line for line in log.read_text(errors='replace').splitlines() if line.strip()]
+    except OSError:
+        return None
+    last = lines[-1] if lines else ''
+    return last if last.startswith('[ERROR] [') and '] [rcl]: ' in last else None
 
 
 def socket_path() -> Path:
