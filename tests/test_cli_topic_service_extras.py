@@ -75,7 +75,9 @@ def test_pub_header_auto_is_stamped_and_delay_measures_it(module_ros_env, turtle
     background('ros2', 'topic', 'pub', '-r', '20', topic, 'geometry_msgs/msg/PointStamped',
                '{header: auto, point: {x: 1.0}}')
     before = time.time()
-    echoed = ros2(module_ros_env, 'topic', 'echo', '--once', topic, '--timeout', '10')
+    # With the type given, as ros2cli's echo does not wait for an unpublished topic's type.
+    echoed = ros2(module_ros_env, 'topic', 'echo', '--once', topic,
+                  'geometry_msgs/msg/PointStamped', '--timeout', '10')
     match = re.fullmatch(r'header:\n  stamp:\n    sec: (\d+)\n    nanosec: (\d+)\n'
                          r"  frame_id: ''\npoint:\n  x: 1\.0\n  y: 0\.0\n  z: 0\.0\n---\n",
                          echoed.stdout)
@@ -97,7 +99,8 @@ def test_pub_stamp_now_and_delay_refuses_a_type_without_header(module_ros_env, t
                    'rosgraph_msgs/msg/Clock', '{clock: {sec: now}}')
     check(refused, '', "Failed to populate field: 'clock.sec' must be an integer in "
           '[-2147483648, 2147483647], got \'now\'\n', 1)
-    echoed = ros2(module_ros_env, 'topic', 'echo', '--once', '/when', '--timeout', '10')
+    echoed = ros2(module_ros_env, 'topic', 'echo', '--once', '/when', 'rosgraph_msgs/msg/Clock',
+                  '--timeout', '10')
     sec = re.fullmatch(r'clock:\n  sec: (\d+)\n  nanosec: \d+\n---\n', echoed.stdout)
     assert sec and abs(int(sec.group(1)) - time.time()) < 30, echoed.stdout + echoed.stderr
     check(ros2(module_ros_env, 'topic', 'delay', '/turtle1/pose'), '',

@@ -136,7 +136,7 @@ def main(args: argparse.Namespace) -> int | str:
     from ros2cli_lite.command.topic.api import apply_sim_time, daemon_lookup
     from ros2cli_lite.daemon.proxy import session
     from ros2cli_lite.node import cli_node, spin_once
-    from ros2cli_lite.qos import subscription_events, subscription_qos
+    from ros2cli_lite.qos import policies_given, subscription_events, subscription_qos
     fields = None
     if args.field is not None:
         fields = [name for name in args.field.split('.') if name]
@@ -150,7 +150,9 @@ def main(args: argparse.Namespace) -> int | str:
         if found is None:
             return _unknown_type(args.topic_name)
         type_name = found[0]
-    with cli_node(spin_time=args.spin_time) as node:
+    # With the type and the QoS given nothing is asked of the graph: subscribe at once.
+    discover = type_name is None or not policies_given(args)
+    with cli_node(discover=discover, spin_time=args.spin_time) as node:
         from rclpy.event_handler import UnsupportedEventTypeError
 
         apply_sim_time(node, args)
