@@ -209,6 +209,7 @@ class PlayerNode:
                     if stop.is_set() or not self.options.loop:
                         break
             finally:
+                self.finished.set()  # /clock stops with the last message
                 services.close()
             self._wait_for_acks()
         except BagError as error:
