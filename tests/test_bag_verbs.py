@@ -6,7 +6,7 @@ from __future__ import annotations
 import re
 
 import pytest
-from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.serialization import serialize_message
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import String
@@ -36,13 +36,15 @@ def test_convert_writes_the_bags_the_options_describe(ros_env, tmp_path):
     write_bag(source, 'mcap')
     options = tmp_path / 'out.yaml'
     options.write_text(f'output_bags:\n- uri: {tmp_path / "only_a"}\n  storage_id: sqlite3\n'
-                       f'  topics: [/a]\n- uri: {tmp_path / "all"}\n  all_topics: true\n')
+                       f'  topics: [/a]\n- uri: {tmp_path / "all"}\n  all_topics: true\n'
+                       '  compression_mode: message\n  compression_format: zstd\n')
     converted = ros2(ros_env, 'bag', 'convert', '-i', str(source), 'mcap', '-o', str(options))
     assert (converted.returncode, converted.stderr) == (0, ''), converted
     only_a = read_all(open_reader(tmp_path / 'only_a'))
     assert [(t, s) for t, _, s in only_a] == [('/a', 1000 + i * 200) for i in range(5)]
     assert open_reader(tmp_path / 'only_a').get_metadata().storage_identifier == 'sqlite3'
     assert read_all(open_reader(tmp_path / 'all')) == read_all(open_reader(source))
+    assert open_reader(tmp_path / 'all').get_metadata().compression_mode == 'MESSAGE'
 
     # Bad input: one line, and the input bag as it was.
     before = sorted((p.name, p.stat().st_size) for p in source.iterdir())
@@ -113,7 +115,8 @@ def test_play_publishes_clock_and_plays_what_is_selected(probe, ros_env, tmp_pat
     assert received['/b'] == [] and received['/c'] == []
     stamps = [m.clock.sec * 1_000_000_000 + m.clock.nanosec for m in clock]
     assert len(stamps) >= 5, stamps  # ~0.5 s of playing at 20 Hz
-    assert stamps == sorted(stamps) and start <= stamps[0] and stamps[-1] <= until + 2e8
+    assert stamps == sorted(stamps), stamps
+    assert start <= stamps[0] and stamps[-1] <= until + 2e8, stamps  # stops with playing
     assert stamps[-1] - stamps[0] >= 2e8  # the clock moved with the bag, not stood still
 
 
@@ -126,3 +129,59 @@ def test_play_refuses_bad_selection_and_clock(ros_env, tmp_path):
                         refused.stderr), refused
     refused = ros2(ros_env, 'bag', 'play', str(bag), '--clock', '0')
     assert refused.returncode == 2 and '0 is not in the valid range (> 0.0)' in refused.stderr
+
+
+def test_player_services_pause_step_seek_rate_and_stop(launch, probe, tmp_path):
+    """`ros2 bag play --start-paused` answers Jazzy's ~/is_paused, ~/get_rate, ~/set_rate,
+    ~/play_next, ~/seek, ~/toggle_paused and ~/stop (rosbag2_interfaces)."""
+    from rosbag2_interfaces import srv
+
+    # Offered transient-local: what play_next publishes before the probe matched still
+    # arrives.
+    latched = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE,
+                         durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    bag = tmp_path / 'steps'
+    writer = rosbag2_py.SequentialWriter()
+    writer.open(rosbag2_py.StorageOptions(uri=str(bag), storage_id='mcap'),
+                rosbag2_py.ConverterOptions('cdr', 'cdr'))
+    writer.create_topic(rosbag2_py.TopicMetadata(0, '/t', 'std_msgs/msg/String', 'cdr',
+                                                 [latched]))
+    start = 1_700_000_000_000_000_000
+    for i in range(10):
+        writer.write('/t', serialize_message(String(data=f't {i}')), start + i * 1_000_000_000)
+    writer.close()
+
+    heard = probe.collect(String, '/t', latched)
+    player = launch(argv=['ros2', 'bag', 'play', str(bag), '--start-paused',
+                          '--disable-keyboard-controls'])
+
+    def call(kind, name, **fields):
+        return probe.call(kind, f'/rosbag2_player/{name}', kind.Request(**fields))
+
+    def step(expect: str) -> None:
+        assert call(srv.PlayNext, 'play_next').success
+        probe.spin_until(lambda: heard and heard[-1].data == expect, 10, expect)
+
+    assert call(srv.IsPaused, 'is_paused').paused
+    assert call(srv.GetRate, 'get_rate').rate == 1.0
+    assert not call(srv.SetRate, 'set_rate', rate=0.0).success
+    assert call(srv.SetRate, 'set_rate', rate=4.0).success
+    assert call(srv.GetRate, 'get_rate').rate == 4.0
+    step('t 0')
+    step('t 1')
+    seek = srv.Seek.Request()
+    seek.time.sec = (start + 7_000_000_000) // 1_000_000_000
+    assert probe.call(srv.Seek, '/rosbag2_player/seek', seek).success
+    step('t 7')
+    call(srv.TogglePaused, 'toggle_paused')  # resumes: t 8 and t 9 at 4x, then the end
+    probe.spin_until(lambda: heard[-1].data == 't 9', 10, 't 9 after resuming')
+    assert player.wait(timeout=10) == 0
+    assert [m.data for m in heard] == ['t 0', 't 1', 't 7', 't 8', 't 9']
+    assert re.search(r'\[rosbag2_player\]: Resuming play\.\n', player.output), player.output
+
+    player = launch(argv=['ros2', 'bag', 'play', str(bag), '--start-paused',
+                          '--disable-keyboard-controls'])
+    assert call(srv.IsPaused, 'is_paused').paused
+    call(srv.Stop, 'stop')
+    assert player.wait(timeout=10) == 0
+    assert len(heard) == 5

@@ -24,6 +24,8 @@ from rosbag2_py._metadata_io import (
     service_name,
     service_type,
 )
+from rosbag2_py._playback_clock import PlaybackClock
+from rosbag2_py._player_services import PlayerServices
 from rosbag2_py._session import SpaceKey
 from rosbag2_py._storage import StorageFilter, filter_selects
 
@@ -51,13 +53,7 @@ class PlayerNode:
         self.reader = reader
         self.options = options
         self.burst = burst  # messages to publish at once (0: all), None: play in time
-        self.paused = options.start_paused and burst is None
-        self.resumed = threading.Event()
-        self.pause_started = time.monotonic()
-        if not self.paused:
-            self.resumed.set()
         self.finished = threading.Event()
-        self.paused_total = 0.0
         self.keys = SpaceKey(self.toggle_paused)
         self.remaps = _remaps(options.topic_remapping_options)
         self.clock_topics = {_absolute(t) for t in options.clock_topics}
@@ -68,8 +64,14 @@ class PlayerNode:
         self.pending: list[Any] = []  # service requests sent, answers not yet seen
         self.clock_publisher: Any = None
         self.first_stamp = reader.meta.starting_time_ns + int(options.start_offset * 1e9)
-        self.begin: float | None = None  # monotonic time of first_stamp in this loop
+        self.clock = PlaybackClock(self.first_stamp, options.rate,
+                                   options.start_paused and burst is None)
+        self.started = False
         self.until = self._until()
+        # Requests of the player's services, taken by the playing loop.
+        self.seek_to: int | None = None
+        self.next_wanted = threading.Event()
+        self.next_played: list[bool] = []
 
     def _until(self) -> int:
         """The last receive stamp to play (-1: all), from playback_duration/until_timestamp."""
@@ -82,12 +84,8 @@ class PlayerNode:
 
     # ---- bag time (what /clock says) ----
     def bag_now(self) -> int:
-        """The player's clock in bag time (ns): stands still while paused or not started."""
-        if self.begin is None:
-            return self.first_stamp
-        now = self.pause_started if self.paused else time.monotonic()
-        elapsed = max(0.0, now - self.begin - self.paused_total)
-        return self.first_stamp + int(elapsed * self.options.rate * 1e9)
+        """The bag time; before playing starts (discovery, --delay) the bag's first stamp."""
+        return self.clock.now() if self.started else self.first_stamp
 
     def _publish_clock(self, stamp: int) -> None:
         from rosgraph_msgs.msg import Clock
@@ -114,16 +112,14 @@ class PlayerNode:
             threading.Thread(target=tick, daemon=True, name='clock').start()
 
     # ---- pause ----
+    @property
+    def paused(self) -> bool:
+        return self.clock.paused
+
     def toggle_paused(self) -> None:
-        if self.paused:
-            self.paused = False
-            self.paused_total += time.monotonic() - self.pause_started
+        if self.clock.resume():
             self.log.info('Resuming play.')
-            self.resumed.set()
-        else:
-            self.paused = True
-            self.pause_started = time.monotonic()
-            self.resumed.clear()
+        elif self.clock.pause():
             self.log.info('Pausing play.')
 
     # ---- endpoints ----
@@ -206,10 +202,15 @@ class PlayerNode:
             if not self.paused and any(counts.get(name) for name in
                                        (*self.publishers, *self.clients)):
                 self._wait_for_subscribers()
-            while True:
-                self._play_once(stop)
-                if stop.is_set() or not self.options.loop:
-                    break
+            services = PlayerServices(self, stop)
+            try:
+                while True:
+                    self._play_once(stop)
+                    if stop.is_set() or not self.options.loop:
+                        break
+            finally:
+                self.finished.set()  # /clock stops with the last message
+                services.close()
             self._wait_for_acks()
         except BagError as error:
             return str(error)
@@ -218,42 +219,46 @@ class PlayerNode:
             self.keys.close()
         return None
 
-    def _sleep_until(self, target: float, stop: threading.Event) -> bool:
-        """Wait for the wall-clock `target` (shifted by time spent paused); False on stop."""
-        while not stop.is_set():
-            if self.paused:
-                self.resumed.wait(0.1)
-                continue
-            remaining = target + self.paused_total - time.monotonic()
-            if remaining <= 0:
-                return True
-            stop.wait(min(remaining, 0.1))
-        return False
+    def _delay(self, stop: threading.Event) -> bool:
+        """The --delay before each loop, in wall time; False on stop."""
+        return not stop.wait(self.options.delay) if self.options.delay > 0 else True
 
     def _play_once(self, stop: threading.Event) -> None:
-        first_stamp = self.first_stamp
-        self.begin = None
-        self.paused_total = 0.0
-        begin = time.monotonic() + self.options.delay
-        if not self._sleep_until(begin, stop):
+        if not self._delay(stop):
             return
-        self.begin = begin
+        self.clock.jump(self.first_stamp)
+        self.started = True
         selected = set(self.publishers) | set(self.clients)
-        sent = 0
-        for topic, stamp, data in self.reader.messages(selected, start_ns=first_stamp):
-            if self.burst is None:
-                target = begin + max(0, stamp - first_stamp) / 1e9 / self.options.rate
-                if not self._sleep_until(target, stop):
+        start, sent = self.first_stamp, 0
+        while True:
+            for topic, stamp, data in self.reader.messages(selected, start_ns=start):
+                if 0 <= self.until < stamp:
                     return
-            elif stop.is_set() or (self.burst and sent >= self.burst):
+                if self.burst is not None:
+                    if stop.is_set() or (self.burst and sent >= self.burst):
+                        return
+                elif not self.clock.sleep_until(stamp, lambda: stop.is_set() or (
+                        self.seek_to is not None or self.next_wanted.is_set())):
+                    if stop.is_set():
+                        return
+                    if self.seek_to is not None:
+                        break  # read again from the seek point
+                    self.clock.jump(stamp)  # play_next: this message now, then paused again
+                self._publish_now(topic, stamp, data)
+                sent += 1
+                if self.next_wanted.is_set():
+                    self.next_wanted.clear()
+                    self.next_played.append(True)
+            else:
                 return
-            if 0 <= self.until < stamp:
-                return
-            if self.clock_publisher is not None and self.options.clock_publish_on_topic_publish \
-                    and (not self.options.clock_topics or topic in self.clock_topics):
-                self._publish_clock(stamp)
-            self._publish(topic, data)
-            sent += 1
+            start, self.seek_to = int(self.seek_to), None
+            self.clock.jump(start)
+
+    def _publish_now(self, topic: str, stamp: int, data: bytes) -> None:
+        if self.clock_publisher is not None and self.options.clock_publish_on_topic_publish \
+                and (not self.options.clock_topics or topic in self.clock_topics):
+            self._publish_clock(stamp)
+        self._publish(topic, data)
 
     def _publish(self, topic: str, data: bytes) -> None:
         publisher = self.publishers.get(topic)
