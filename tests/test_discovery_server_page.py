@@ -218,3 +218,14 @@ def test_redundancy_backup_and_partitions(page: Page) -> None:
                           server=both)
     wait_heard(listener, lambda n: len(n) >= 1, 'a listener hearing talker_1 via server 1')
     assert second.popen.poll() is None
+
+
+def test_the_pages_first_server_listens_on_loopback_only() -> None:
+    """`fastdds discovery --server-id 0` (upstream: every interface, port 11811) gets
+    127.0.0.1:11811 here; the page's old option names become Fast DDS 2.14's."""
+    from fastdds_cli.fastdds import server_arguments
+    assert server_arguments(['--server-id', '0']) == [
+        '--server-id', '0', '--udp-address', '127.0.0.1', '--udp-port', '11811']
+    assert server_arguments(['-i', '1', '--ip-address', '127.0.0.1', '--port=11888', '-b']) == [
+        '-i', '1', '--udp-address', '127.0.0.1', '--udp-port=11888', '-b']
+    assert server_arguments(['-i', '0', '-x', 'config.xml']) == ['-i', '0', '-x', 'config.xml']
