@@ -90,12 +90,13 @@ def executable(package: str, name: str) -> str:
 class RosProcess:
     """A node (or any command) run as a child process with its output kept in a file."""
 
-    def __init__(self, args: list[str], env: dict[str, str], log_path: Path) -> None:
+    def __init__(self, args: list[str], env: dict[str, str], log_path: Path,
+                 cwd: Path | None = None) -> None:
         self.args = args
         self.log_path = log_path
         self._log = open(log_path, 'wb')
         self.popen = subprocess.Popen(
-            args, env=env, stdin=subprocess.DEVNULL, stdout=self._log,
+            args, env=env, cwd=cwd, stdin=subprocess.DEVNULL, stdout=self._log,
             stderr=subprocess.STDOUT, start_new_session=True)
 
     @property

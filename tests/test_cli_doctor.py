@@ -100,6 +100,10 @@ def test_doctor_warns_when_discovery_would_leave_the_machine(ros_env):
                for m in messages), messages
     assert any(m.startswith('ROS_DOMAIN_ID 150 is above 101') for m in messages), messages
     assert 'Only loopback IP address is found.' in messages
+    # Its loopback is down: the multicast probe gets nothing, as behind a blocking firewall.
+    assert ('A UDP multicast datagram sent on this machine was not received: multicast may be '
+            'blocked (firewall?). Check with `ros2 multicast receive` and `ros2 multicast send` '
+            'in two terminals.') in messages
     assert result.stdout == '\nAll 5 checks passed\n\n'
 
 

@@ -18,7 +18,7 @@ from node_runtime import discovery
 
 @pytest.fixture
 def clean_env(monkeypatch, tmp_path):
-    for name in discovery.PROFILE_VARIABLES:
+    for name in (*discovery.PROFILE_VARIABLES, discovery.DISCOVERY_SERVER_VARIABLE):
         monkeypatch.delenv(name, raising=False)
     monkeypatch.setattr(tempfile, 'tempdir', str(tmp_path))
     monkeypatch.setenv('ROS_DOMAIN_ID', '7')
@@ -72,3 +72,9 @@ def test_a_profile_the_user_chose_is_left_alone(clean_env, tmp_path):
     discovery.announce_often()
     assert 'FASTRTPS_DEFAULT_PROFILES_FILE' not in os.environ
     assert not discovery.is_ours(str(mine))
+
+
+def test_a_discovery_server_set_up_is_left_alone(clean_env):
+    clean_env.setenv('ROS_DISCOVERY_SERVER', '127.0.0.1:11811')
+    discovery.announce_often()
+    assert 'FASTRTPS_DEFAULT_PROFILES_FILE' not in os.environ

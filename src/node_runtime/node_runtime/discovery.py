@@ -15,7 +15,8 @@ Two Fast DDS behaviours slow down a node that (re)starts next to running ones:
 
 `announce_often()`, called before rclpy.init, sets this up through FASTRTPS_DEFAULT_PROFILES_FILE.
 A profile file the user chose (FASTRTPS_/FASTDDS_DEFAULT_PROFILES_FILE) is left alone, and
-another RMW ignores it.
+another RMW ignores it. So is a discovery-server set-up (ROS_DISCOVERY_SERVER): there the
+server, not announcements to localhost ports, decides who meets whom (docs/discovery_server.md).
 """
 
 from __future__ import annotations
@@ -26,6 +27,8 @@ import tempfile
 from pathlib import Path
 
 PROFILE_VARIABLES = ('FASTRTPS_DEFAULT_PROFILES_FILE', 'FASTDDS_DEFAULT_PROFILES_FILE')
+# Fast DDS turns a participant into a client of these servers when it reads this variable.
+DISCOVERY_SERVER_VARIABLE = 'ROS_DISCOVERY_SERVER'
 # rmw_fastrtps sends LOCALHOST discovery to participant ids 0-31 on 127.0.0.1, and Fast DDS
 # sends to each ROS_STATIC_PEERS address (SUBNET, machines without multicast) at ids 0-3: a
 # rotation inside that range keeps every start reachable by the others' announcements.
@@ -56,13 +59,13 @@ def is_ours(profile: str | None) -> bool:
 
 
 def announce_often(fresh_port: bool = True) -> None:
-    """Point Fast DDS at our profile unless a profile is already chosen.
+    """Point Fast DDS at our profile unless a profile or a discovery server is chosen.
 
     With `fresh_port` the profile also pins the next participant id of the rotation. Only for
     processes with a single ROS context: Fast DDS refuses a second participant with the same
     id in one process.
     """
-    if any(os.environ.get(name) for name in PROFILE_VARIABLES):
+    if any(os.environ.get(name) for name in (*PROFILE_VARIABLES, DISCOVERY_SERVER_VARIABLE)):
         return
     profile = profile_path()
     if profile is None:

@@ -85,6 +85,12 @@ def check_network() -> Result:
         result.warn('Only loopback IP address is found.')
     if not any('multicast' in flags for flags in interfaces.values()):
         result.warn('No multicast IP address is found.')
+    from ros2multicast.api import loopback_delivers
+    if not loopback_delivers():
+        # The Installation troubleshooting page's check, done here on loopback.
+        result.warn('A UDP multicast datagram sent on this machine was not received: '
+                    'multicast may be blocked (firewall?). Check with `ros2 multicast '
+                    'receive` and `ros2 multicast send` in two terminals.')
     scope = os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE', '')
     if scope and scope not in DISCOVERY_RANGES:
         result.fail(f"ROS_AUTOMATIC_DISCOVERY_RANGE is '{scope}', allowed: "

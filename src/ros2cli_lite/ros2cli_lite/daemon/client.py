@@ -125,8 +125,8 @@ def start(path: Path | None = None) -> bool:
         with open(_log_path(path), 'wb') as log:
             process = subprocess.Popen(
                 [sys.executable, '-m', 'ros2cli_lite.daemon.server'], cwd='/',
-                stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
-                start_new_session=True, close_fds=True)
+                env=protocol.spawn_environment(), stdin=subprocess.DEVNULL, stdout=log,
+                stderr=subprocess.STDOUT, start_new_session=True, close_fds=True)
         deadline = time.monotonic() + START_BOUND
         while not is_running(path):
             if process.poll() is not None and not _locked(path):

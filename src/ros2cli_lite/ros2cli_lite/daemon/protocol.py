@@ -19,8 +19,13 @@ from zlib import adler32, crc32
 # verbs for the CLI (proxy.py), so every module counts.
 PROTOCOL = 3
 # The settings that decide which DDS graph a process sees: a daemon serves exactly one set.
+# A Fast DDS profile (e.g. the discovery-server page's super client) and the discovery
+# server variables count: `ros2 topic list` after exporting them reaches a daemon made so.
 SETTINGS = ('ROS_DOMAIN_ID', 'ROS_AUTOMATIC_DISCOVERY_RANGE', 'ROS_STATIC_PEERS',
-            'RMW_IMPLEMENTATION', 'ROS_LOCALHOST_ONLY')
+            'RMW_IMPLEMENTATION', 'ROS_LOCALHOST_ONLY', 'ROS_DISCOVERY_SERVER',
+            'ROS_SUPER_CLIENT', 'FASTRTPS_DEFAULT_PROFILES_FILE',
+            'FASTDDS_DEFAULT_PROFILES_FILE')
+PROFILE_SETTINGS = ('FASTRTPS_DEFAULT_PROFILES_FILE', 'FASTDDS_DEFAULT_PROFILES_FILE')
 # What decides the code and interfaces a verb loads (a sourced overlay changes them): a
 # process runs verbs only for CLIs whose values are its own; the daemon keeps one worker
 # process per other set of values (server.py).
@@ -55,7 +60,28 @@ def _digest(text: str) -> str:
 def settings(env: dict[str, str] | os._Environ[str] | None = None) -> dict[str, str]:
     """The graph-deciding settings of `env` (default: this process), unset ones as ''."""
     env = os.environ if env is None else env
-    return {name: env.get(name, '').strip() for name in SETTINGS}
+    values = {name: env.get(name, '').strip() for name in SETTINGS}
+    for name in PROFILE_SETTINGS:
+        values[name] = _user_profile(values[name])
+    return values
+
+
+def _user_profile(path: str) -> str:
+    """A profile file the user chose, absolute (the daemon runs in /); '' for none or for
+    the workspace's own announcement profile (node_runtime.discovery sets it in processes)."""
+    if not path:
+        return ''
+    from node_runtime.discovery import is_ours
+    return '' if is_ours(path) else os.path.abspath(path)
+
+
+def spawn_environment() -> dict[str, str]:
+    """This process's environment for a daemon it starts: profile paths made absolute."""
+    env = dict(os.environ)
+    for name in PROFILE_SETTINGS:
+        if env.get(name, '').strip():
+            env[name] = os.path.abspath(env[name].strip())
+    return env
 
 
 def runtime_dir() -> Path:
