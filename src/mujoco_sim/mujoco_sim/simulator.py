@@ -112,7 +112,7 @@ class MujocoSim(Node):
         speed = 'as fast as possible' if self.rtf == 0 else f'{self.rtf:g}x real time'
         self.get_logger().info(
             f"Loaded world '{world}' ({model.nbody - 1} bodies) with robot "
-            f"'{self.world.robot_body.get('name')}'; timestep {model.opt.timestep:g} s, "
+            f"'{self.world.robot_name}'; timestep {model.opt.timestep:g} s, "
             f'{speed}')
 
     # --- stepping --------------------------------------------------------------------------

@@ -5,7 +5,8 @@ is refused here with the same one line. Each link becomes a body placed by its p
 origin; continuous and revolute joints become hinges, prismatic ones slides, fixed joints
 weld the child to the parent (a body without a joint). Collision shapes become the colliding
 geoms, coloured by the link's first visual material so the camera sees the robot's colours;
-<inertial> gives mass and inertia; a link's `<gazebo reference=..><mu1>` its friction. The root link gets a free joint unless `fixed_base`.
+<inertial> gives mass and inertia; a link's `<gazebo reference=..><mu1>` its friction.
+The root link gets a free joint unless `fixed_base`.
 """
 
 from __future__ import annotations
