@@ -76,7 +76,7 @@ def sim_factor(session: Session, name: str, seconds: float, **params) -> tuple[f
     return (last[1] - first[1]) / wall, (cpu1 - cpu0) / wall
 
 
-def launch_to_first_scan(session: Session, runs: int) -> list[float]:
+def time_to_first_scan(session: Session, argv: list[str], runs: int) -> list[float]:
     from sensor_msgs.msg import LaserScan
     probe = session.probe()
     scans: list[LaserScan] = []
@@ -86,8 +86,7 @@ def launch_to_first_scan(session: Session, runs: int) -> list[float]:
         for _ in range(runs):
             scans.clear()
             started = time.monotonic()
-            process = session.start_argv(['ros2', 'launch', 'diffbot_bringup',
-                                          'diffbot_sim.launch.py', 'rviz:=false'])
+            process = session.start_argv(argv)
             try:
                 probe.spin_until(lambda: bool(scans), BOUND, 'the first /scan')
                 samples.append(time.monotonic() - started)
@@ -106,7 +105,12 @@ def run(session: Session, seconds: float = SECONDS, runs: int = RUNS) -> tuple[l
                               camera=False)
     at_real_time, cpu = sim_factor(session, 'real_time', seconds, real_time_factor=1.0)
     bare = bare_mujoco_factor(min(seconds, 3.0))
-    starts = launch_to_first_scan(session, runs)
+    starts = time_to_first_scan(session, ['ros2', 'launch', 'diffbot_bringup',
+                                          'diffbot_sim.launch.py', 'rviz:=false'], runs)
+    # The baseline: the simulator alone, without launch and robot_state_publisher.
+    params_file = robot_params(session.log_dir / 'alone.yaml')
+    alone = time_to_first_scan(session, [executable('mujoco_sim', 'mujoco_sim'), '--ros-args',
+                                         '--params-file', str(params_file)], runs)
     rows = [
         Row('sim', 'real-time factor as fast as possible, scan 360 rays@10 Hz + camera '
             '320x240@15 Hz + IMU@100 Hz', f'{full:.1f}', '>= 1.0', verdict(full >= 1.0)),
@@ -118,9 +122,12 @@ def run(session: Session, seconds: float = SECONDS, runs: int = RUNS) -> tuple[l
         Row('sim', f'ros2 launch diffbot_sim.launch.py to first /scan (warm), p50 / max of '
             f'{len(starts)}', f'{percentile(starts, 50):.2f} / {max(starts):.2f} s', '<= 5 s',
             verdict(max(starts) <= 5.0)),
+        Row('sim', f'baseline: the mujoco_sim executable alone to first /scan (warm), p50 / '
+            f'max of {len(alone)}', f'{percentile(alone, 50):.2f} / {max(alone):.2f} s'),
     ]
     return rows, {'sim': {'full': full, 'no_camera': no_camera, 'bare': bare,
-                          'real_time': at_real_time, 'cpu': cpu, 'starts': starts}}
+                          'real_time': at_real_time, 'cpu': cpu, 'starts': starts,
+                          'alone': alone}}
 
 
 def main() -> None:

@@ -49,15 +49,7 @@ class RobotBridge:
                            float(p('range_max', 12.0).value), self.rates['scan'])
         self.imu = ImuSensor(world.model, spec.imu_link)
         self.camera: Camera | None = None
-        if p('camera', True).value:
-            try:
-                self.camera = Camera(world.model, spec.camera_link, *spec.image_size,
-                                     spec.camera_fovy_deg)
-            except Exception as error:  # EGL missing or unusable: everything else still runs
-                node.get_logger().warn(
-                    f"camera disabled: offscreen rendering (MUJOCO_GL={os.environ['MUJOCO_GL']}) "
-                    f"failed: {' '.join(str(error).split())} -- install the Debian packages "
-                    f'{EGL_PACKAGES}')
+        self.camera_wanted = bool(p('camera', True).value)
         self.odom_pub = node.create_publisher(OdometryMsg, 'odom', 10)
         self.truth_pub = node.create_publisher(OdometryMsg, 'ground_truth/odom', 10)
         self.joints_pub = node.create_publisher(JointState, 'joint_states', 10)
@@ -92,6 +84,21 @@ class RobotBridge:
                        for name in robot_joints]
         self.base_body = model.body(self.base_frame).id
         self.drive(*self.command)
+
+    def start_camera(self) -> bool:
+        """Open the offscreen renderer (0.4-0.9 s here: the caller does it after the first
+        scan is out, not before). False, with one line naming the fix, when EGL fails."""
+        self.camera_wanted = False
+        try:
+            self.camera = Camera(self.world.model, self.spec.camera_link, *self.spec.image_size,
+                                 self.spec.camera_fovy_deg)
+        except Exception as error:  # EGL missing or unusable: everything else still runs
+            self.node.get_logger().warn(
+                f"camera disabled: offscreen rendering (MUJOCO_GL={os.environ['MUJOCO_GL']}) "
+                f"failed: {' '.join(str(error).split())} -- install the Debian packages "
+                f'{EGL_PACKAGES}')
+            return False
+        return True
 
     def rebind(self, world: World) -> None:
         self.world = world

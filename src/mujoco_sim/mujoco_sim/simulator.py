@@ -94,8 +94,6 @@ class MujocoSim(Node):
                         Periodic(1.0 / rate['joint_states'], self.bridge.publish_joint_states),
                         Periodic(1.0 / rate['imu'], self.bridge.publish_imu),
                         Periodic(1.0 / rate['scan'], self.bridge.publish_scan)]
-        if self.bridge.camera is not None:
-            self.outputs.append(Periodic(1.0 / rate['camera'], self.bridge.publish_camera))
         self.cmd_warnings = RepeatLimiter()
         self.create_subscription(Twist, 'cmd_vel', self.on_cmd_vel, 10)
         self.create_service(Empty, 'reset_simulation', self.on_reset_simulation)
@@ -106,6 +104,7 @@ class MujocoSim(Node):
         self.create_service(SpawnEntity, 'spawn_entity', self.on_spawn)
         self.create_service(DeleteEntity, 'delete_entity', self.on_delete)
         self.paused = False
+        self.ticks = 0
         self.anchor = (time.monotonic(), self.world.data.time)
         self.create_timer(TICK, self.tick)
         model = self.world.model
@@ -126,6 +125,14 @@ class MujocoSim(Node):
                 output.poll(now)
 
     def tick(self) -> None:
+        self.ticks += 1
+        if self.bridge.camera_wanted and self.ticks == 2:
+            # After the first tick's sensors: starting the renderer does not delay them.
+            if self.bridge.start_camera():
+                camera = Periodic(1.0 / self.bridge.rates['camera'], self.bridge.publish_camera)
+                camera.due = self.world.data.time
+                self.outputs.append(camera)
+            self.anchor = (time.monotonic(), self.world.data.time)  # its start is not lag
         if self.paused:
             return
         dt = self.world.model.opt.timestep
@@ -185,6 +192,7 @@ class MujocoSim(Node):
 
     def on_unpause(self, _request, response):
         self.paused = False
+        self.ticks = 0
         self.anchor = (time.monotonic(), self.world.data.time)
         return response
 
