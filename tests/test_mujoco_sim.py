@@ -15,8 +15,9 @@ from nav_msgs.msg import Odometry
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rosgraph_msgs.msg import Clock
-from sensor_msgs.msg import CameraInfo, Image, LaserScan
+from sensor_msgs.msg import CameraInfo, Image, Imu, JointState, LaserScan
 from std_srvs.srv import Empty
+from tf2_msgs.msg import TFMessage
 
 from mujoco_sim_interfaces.srv import DeleteEntity, SpawnEntity, StepSimulation
 from support import RosProcess, TestNode, executable, leased_domain, ros_environment
@@ -46,6 +47,9 @@ class Sim:
         self.scans = probe.collect(LaserScan, '/scan')
         self.images = probe.collect(Image, '/camera/image_raw')
         self.infos = probe.collect(CameraInfo, '/camera/camera_info')
+        self.imu = probe.collect(Imu, '/imu')
+        self.joints = probe.collect(JointState, '/joint_states')
+        self.tf = probe.collect(TFMessage, '/tf', 100)
         self.cmd = probe.node.create_publisher(Twist, '/cmd_vel', 10)
 
     def empty(self, name: str) -> None:
@@ -170,6 +174,20 @@ def test_one_metre_at_0_2_m_per_s(sim: Sim) -> None:
     assert truth.pose.pose.position.x == pytest.approx(1.0, abs=0.05)
     assert abs(odom.pose.pose.position.y) < 0.01 and abs(truth.pose.pose.position.y) < 0.01
     assert abs(odom.twist.twist.linear.x) < 0.01  # stopped
+    # The same pose as odom -> base_link on /tf, stamped like the odometry.
+    def transforms() -> list:
+        return [t for m in sim.tf for t in m.transforms
+                if (t.header.frame_id, t.child_frame_id) == ('odom', 'base_link')
+                and t.header.stamp == odom.header.stamp]
+    sim.probe.spin_until(transforms, 5, "odom -> base_link on /tf at the odometry's stamp")
+    assert transforms()[0].transform.translation.x == odom.pose.pose.position.x
+    # Standing still: the IMU reads gravity upwards; the wheels turned 1 m / 0.035 m.
+    imu = sim.latest(sim.imu, settling)
+    assert imu.header.frame_id == 'imu_link'
+    assert imu.linear_acceleration.z == pytest.approx(9.81, abs=0.05)
+    joints = sim.latest(sim.joints, settling)
+    assert list(joints.name) == ['left_wheel_joint', 'right_wheel_joint']
+    assert joints.position[0] == pytest.approx(1.0 / 0.035, rel=0.05)
 
 
 def test_scan_reads_a_wall_two_metres_ahead(sim: Sim) -> None:
