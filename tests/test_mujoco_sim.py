@@ -272,9 +272,13 @@ def test_bad_input_gets_one_line_and_the_simulation_goes_on(sim: Sim) -> None:
     assert sim.process.popen.poll() is None
 
 
-def test_missing_world_file_exits_with_one_line(tmp_path: Path) -> None:
-    params = params_file(tmp_path / 'params.yaml', robot_description=urdf_text(),
-                         world='/nonexistent/world.xml')
+@pytest.mark.parametrize('values, message', [
+    ({'world': '/nonexistent/world.xml'}, r"world file '/nonexistent/world\.xml' does not exist"),
+    ({'real_time_factor': 'fast'},
+     r"real_time_factor is 'fast'; allowed: a number from 0 to 1000"),
+])
+def test_bad_world_or_parameter_exits_with_one_line(values, message, tmp_path: Path) -> None:
+    params = params_file(tmp_path / 'params.yaml', robot_description=urdf_text(), **values)
     with leased_domain() as domain:
         process = RosProcess([executable('mujoco_sim', 'mujoco_sim'), '--ros-args',
                               '--params-file', str(params)], ros_environment(domain),
@@ -283,5 +287,4 @@ def test_missing_world_file_exits_with_one_line(tmp_path: Path) -> None:
         lines = process.output.strip().splitlines()
         process.stop()
     assert len(lines) == 1, lines
-    assert re.fullmatch(r"\[ERROR\] \[[\d.]+\] \[mujoco_sim\]: world file "
-                        r"'/nonexistent/world\.xml' does not exist", lines[0]), lines
+    assert re.fullmatch(r'\[ERROR\] \[[\d.]+\] \[mujoco_sim\]: ' + message, lines[0]), lines

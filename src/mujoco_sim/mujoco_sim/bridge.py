@@ -14,6 +14,7 @@ from sensor_msgs.msg import CameraInfo, Image, Imu, JointState, LaserScan
 from tf2_ros import TransformBroadcaster
 
 from mujoco_sim.diff_drive import Odometry, WheelGeometry, wheel_speeds
+from mujoco_sim.params import Parameters
 from mujoco_sim.sensors import EGL_PACKAGES, Camera, ImuSensor, Lidar
 from mujoco_sim.world import RobotSpec, World
 
@@ -29,27 +30,21 @@ def _yaw_quaternion(yaw: float) -> tuple[float, float, float, float]:
 
 
 class RobotBridge:
-    def __init__(self, node: Node, world: World, spec: RobotSpec) -> None:
+    def __init__(self, node: Node, p: Parameters, world: World, spec: RobotSpec) -> None:
         self.node, self.world, self.spec = node, world, spec
-        p = node.declare_parameter
-        self.rates = {name: float(p(f'{name}_rate', default).value) for name, default in
-                      (('odom', 50.0), ('joint_states', 30.0), ('imu', 100.0),
-                       ('scan', 10.0), ('camera', 15.0))}
-        for name, rate in self.rates.items():
-            if not 0 < rate <= 1000:
-                raise ValueError(f'{name}_rate is {rate}; allowed: 0 < rate <= 1000 Hz')
-        self.odom_frame = p('odom_frame', 'odom').value
+        self.rates = {name: p.number(f'{name}_rate', default, 0.01, 1000.0) for name, default
+                      in (('odom', 50.0), ('joint_states', 30.0), ('imu', 100.0),
+                          ('scan', 10.0), ('camera', 15.0))}
+        self.odom_frame = p.text('odom_frame', 'odom')
         self.base_frame = world.robot_body.get('name')
-        lidar_frame = p('lidar_frame', 'lidar_link').value
-        samples = int(p('scan_samples', 360).value)
-        if not 1 <= samples <= 10000:
-            raise ValueError(f'scan_samples is {samples}; allowed: 1 to 10000')
-        self.lidar = Lidar(world.model, lidar_frame, lidar_frame, samples,
-                           float(p('range_min', 0.12).value),
-                           float(p('range_max', 12.0).value), self.rates['scan'])
+        lidar_frame = p.text('lidar_frame', 'lidar_link')
+        range_min = p.number('range_min', 0.12, 0.0, 1000.0)
+        self.lidar = Lidar(world.model, lidar_frame, lidar_frame,
+                           p.number('scan_samples', 360, 1, 10000, integer=True), range_min,
+                           p.number('range_max', 12.0, range_min, 1000.0), self.rates['scan'])
         self.imu = ImuSensor(world.model, spec.imu_link)
         self.camera: Camera | None = None
-        self.camera_wanted = bool(p('camera', True).value)
+        self.camera_wanted = p.flag('camera', True)
         self.odom_pub = node.create_publisher(OdometryMsg, 'odom', 10)
         self.truth_pub = node.create_publisher(OdometryMsg, 'ground_truth/odom', 10)
         self.joints_pub = node.create_publisher(JointState, 'joint_states', 10)

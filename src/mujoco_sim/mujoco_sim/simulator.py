@@ -18,7 +18,6 @@ from node_runtime import quiet_ctrl_c_while_starting
 
 quiet_ctrl_c_while_starting('mujoco_sim')
 
-import math  # noqa: E402
 import time  # noqa: E402
 from collections.abc import Callable  # noqa: E402
 from pathlib import Path  # noqa: E402
@@ -33,6 +32,7 @@ from std_srvs.srv import Empty  # noqa: E402
 
 from mujoco_sim.bridge import RobotBridge, stamp  # noqa: E402
 from mujoco_sim.diff_drive import check_twist  # noqa: E402
+from mujoco_sim.params import Parameters  # noqa: E402
 from mujoco_sim.world import RobotSpec, World, WorldError  # noqa: E402
 from mujoco_sim_interfaces.srv import DeleteEntity, SpawnEntity, StepSimulation  # noqa: E402
 
@@ -63,30 +63,27 @@ class Periodic:
 class MujocoSim(Node):
     def __init__(self) -> None:
         super().__init__('mujoco_sim')
-        p = self.declare_parameter
-        world = p('world', '').value or default_world()
-        urdf = p('robot_description', '').value
-        self.rtf = float(p('real_time_factor', 1.0).value)
-        if not math.isfinite(self.rtf) or self.rtf < 0:
-            raise WorldError(f'real_time_factor is {self.rtf}; allowed: 0 (as fast as '
-                             'possible) or a positive number')
+        p = Parameters(self)
+        world = p.text('world', '') or default_world()
+        urdf = p.text('robot_description', '')
+        self.rtf = p.number('real_time_factor', 1.0, 0.0, 1000.0)
         if not urdf.strip():
             raise WorldError("robot_description parameter must not be empty (give the robot's "
                              'URDF, e.g. -p robot_description:="$(cat robot.urdf)")')
         spec = RobotSpec(
             urdf=urdf,
-            pose=(float(p('x', 0.0).value), float(p('y', 0.0).value),
-                  float(p('yaw', 0.0).value)),
-            wheels=(p('left_wheel_joint', 'left_wheel_joint').value,
-                    p('right_wheel_joint', 'right_wheel_joint').value),
-            camera_link=p('camera_frame', 'camera_link').value,
-            camera_fovy_deg=float(p('camera_fov_deg', 60.0).value),
-            image_size=(int(p('image_width', 320).value), int(p('image_height', 240).value)),
-            imu_link=p('imu_frame', 'imu_link').value)
+            pose=(p.number('x', 0.0), p.number('y', 0.0), p.number('yaw', 0.0)),
+            wheels=(p.text('left_wheel_joint', 'left_wheel_joint'),
+                    p.text('right_wheel_joint', 'right_wheel_joint')),
+            camera_link=p.text('camera_frame', 'camera_link'),
+            camera_fovy_deg=p.number('camera_fov_deg', 60.0, 1.0, 179.0),
+            image_size=(p.number('image_width', 320, 1, 4096, integer=True),
+                        p.number('image_height', 240, 1, 4096, integer=True)),
+            imu_link=p.text('imu_frame', 'imu_link'))
+        self.max_linear = p.number('max_linear_velocity', 1.0, 0.0, 100.0)
+        self.max_angular = p.number('max_angular_velocity', 4.0, 0.0, 100.0)
         self.world = World(world, spec)
-        self.max_linear = float(p('max_linear_velocity', 1.0).value)
-        self.max_angular = float(p('max_angular_velocity', 4.0).value)
-        self.bridge = RobotBridge(self, self.world, spec)
+        self.bridge = RobotBridge(self, p, self.world, spec)
         self.clock_pub = self.create_publisher(Clock, 'clock', 10)
         rate = self.bridge.rates
         self.outputs = [Periodic(0.01, self.publish_clock),

@@ -102,6 +102,7 @@ class World:
                 ET.SubElement(body, 'camera', name='camera', xyaxes='0 -1 0 0 0 1',
                               fovy=f'{self.robot.camera_fovy_deg:.9g}')
                 return
+        raise WorldError(f"camera_frame '{self.robot.camera_link}' is not a link of the robot")
 
     def body_names(self) -> list[str]:
         """Names of the world file's top-level bodies and the spawned models."""
