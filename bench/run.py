@@ -12,6 +12,7 @@ import json
 import time
 
 import cli_speed
+import sim
 
 import bag
 import bag_stop
@@ -48,6 +49,8 @@ SUITE = {
     'turtle_tf2_cpu': lambda s, quick: turtle_tf2_cpu.run(
         s, duration=8.0 if quick else turtle_tf2_cpu.DURATION_S),
     'cli_speed': lambda s, quick: cli_speed.run(s, runs=2 if quick else cli_speed.RUNS),
+    'sim': lambda s, quick: sim.run(s, seconds=3.0 if quick else sim.SECONDS,
+                                    runs=1 if quick else sim.RUNS),
 }
 
 
