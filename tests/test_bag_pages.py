@@ -25,6 +25,8 @@ from support import REPO, Background, ros2, wait_until
 
 PAGES = REPO / 'tests' / 'data' / 'bag_pages'
 COUNT = 40  # messages the recorder page records (its reader page replays them in 4 s)
+PUBLISHED_LINE = re.compile(r'\[INFO\] \[[\d.]+\] \[simple_bag_reader\]: Publish serialized '
+                            r'data to chatter\n')
 
 
 @pytest.fixture
@@ -34,9 +36,12 @@ def run_page(ros_env: dict[str, str], tmp_path: Path) -> Iterator:
 
     def start(name: str) -> subprocess.Popen:
         shutil.copy(PAGES / name, tmp_path / name)
-        process = subprocess.Popen([sys.executable, name], cwd=tmp_path, env=ros_env,
-                                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                                   stdin=subprocess.DEVNULL)
+        # Into a file, so that a test can read what the node has printed so far.
+        with open(tmp_path / f'{name}.log', 'w') as log:
+            process = subprocess.Popen([sys.executable, name], cwd=tmp_path, env=ros_env,
+                                       stdout=log, stderr=subprocess.STDOUT, text=True,
+                                       stdin=subprocess.DEVNULL)
+        process.log_path = tmp_path / f'{name}.log'
         started.append(process)
         return process
 
@@ -44,13 +49,19 @@ def run_page(ros_env: dict[str, str], tmp_path: Path) -> Iterator:
     for process in started:
         if process.poll() is None:
             process.kill()
-        process.communicate(timeout=10)
+        process.wait(timeout=10)
+
+
+def output(process: subprocess.Popen) -> str:
+    """What a page's node has printed so far."""
+    return process.log_path.read_text(errors='replace')
 
 
 def interrupt(process: subprocess.Popen) -> str:
     """Ctrl-C, as the page says to end a node; its output."""
     process.send_signal(signal.SIGINT)
-    return process.communicate(timeout=15)[0]
+    process.wait(timeout=15)
+    return output(process)
 
 
 def test_simple_bag_recorder_then_ros2_bag_play_then_the_reader_page(
@@ -89,10 +100,12 @@ def test_simple_bag_recorder_then_ros2_bag_play_then_the_reader_page(
     first = int(heard[0].data.rsplit(' ', 1)[1])
     assert first < COUNT - 5, first
     assert [m.data for m in heard] == [f'Hello World: {i}' for i in range(first, COUNT)]
-    output = interrupt(reader)
-    assert len(re.findall(r'\[INFO\] \[[\d.]+\] \[simple_bag_reader\]: Publish serialized '
-                          r'data to chatter\n', output)) == COUNT, output
-    assert 'Traceback' not in output
+    # The page logs each message after publishing it: its last line may follow the message.
+    wait_until(lambda: len(PUBLISHED_LINE.findall(output(reader))) == COUNT, 10,
+               "the reader page's last line")
+    printed = interrupt(reader)
+    assert len(PUBLISHED_LINE.findall(printed)) == COUNT, printed
+    assert 'Traceback' not in printed
 
 
 def test_data_generator_node_records_one_message_a_second(run_page, probe, ros_env, tmp_path):
