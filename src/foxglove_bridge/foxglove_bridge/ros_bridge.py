@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any, Protocol
 
 from ament_index_python import PackageNotFoundError, get_package_share_directory
+from rclpy.exceptions import InvalidHandle
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.serialization import deserialize_message, serialize_message
@@ -207,7 +208,12 @@ class FoxgloveBridge(Node):
             return function(*args)
         job: concurrent.futures.Future[Any] = concurrent.futures.Future()
         self._jobs.put((job, function, args))
-        self._wake.trigger()
+        try:
+            self._wake.trigger()
+        except InvalidHandle:
+            # Ctrl-C while a client still subscribes: ROS shut down first and took the node's
+            # entities with it, so the client's release has nothing left to undo.
+            return None
         try:
             return job.result(timeout=JOB_TIMEOUT)
         except concurrent.futures.TimeoutError:
