@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 from geometry_msgs.msg import Twist, Vector3
+from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from test_mujoco_sim_rviz import DIFFBOT_LINKS
 from test_rviz_displays import rviz_page
@@ -47,7 +48,7 @@ def test_recorded_run_replays_into_the_rviz_page(tmp_path: Path, domain: int,
                                   tmp_path / 'record.log')
             for topic in RECORDED:
                 recorder.wait_for_output(f"Subscribed to topic '{topic}'", timeout=20)
-            probe.spin_for(1.0)
+            probe.spin_for(0.5)
             assert recorder.stop() == 0, recorder.output
         finally:
             assert bringup.stop() == 0, bringup.output
@@ -58,6 +59,7 @@ def test_recorded_run_replays_into_the_rviz_page(tmp_path: Path, domain: int,
         # The bag plays while the page starts: the robot description and the static frames,
         # recorded once, reach the page because the player offers them transient-local.
         heard = probe.collect(LaserScan, '/scan')
+        clocks = probe.collect(Clock, '/clock')
         player = RosProcess(['ros2', 'bag', 'play', str(bag), '--loop'], ros_env,
                             tmp_path / 'play.log')
         with rviz_page(ros_env, probe, config, tmp_path) as (_server, page):
@@ -80,4 +82,8 @@ def test_recorded_run_replays_into_the_rviz_page(tmp_path: Path, domain: int,
         key = (scan.header.stamp.sec, scan.header.stamp.nanosec)
         if key in recorded:
             assert list(scan.ranges) == recorded[key]
+    # The run's /clock plays too (sim time: seconds since the simulator started, not the
+    # wall clock), for use_sim_time nodes to follow.
+    last = max(recorded)[0]
+    assert clocks and all(0 <= c.clock.sec <= last + 1 for c in clocks), clocks[:3]
     assert sum((s.header.stamp.sec, s.header.stamp.nanosec) in recorded for s in heard) >= 3
