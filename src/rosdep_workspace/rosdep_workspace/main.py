@@ -15,7 +15,7 @@ import sys
 from contextlib import redirect_stderr, redirect_stdout
 from pathlib import Path
 
-from rosdep_workspace import sources
+from rosdep_workspace import pip_detection, sources
 
 STATE_ENV = 'ROSDEP_WORKSPACE_STATE'
 # `install` and `keys` say `pkg: Cannot locate...`, `check` says `ERROR[pkg]: Cannot locate...`.
@@ -39,6 +39,7 @@ def main(argv: list[str] | None = None) -> int:
               '(ROSDEP_SOURCE_PATH): nothing to initialize; run `rosdep update`')
         return 0
     from rosdep2 import main as rosdep
+    pip_detection.use_metadata()
     if argv[:1] != ['update']:
         _refresh_cache(state, rosdep)
     if argv[:1] == ['install']:
