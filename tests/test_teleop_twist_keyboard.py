@@ -116,8 +116,12 @@ def test_drives_turtlesim_with_repeat_rate_and_key_timeout(terminals, launch, ro
                        '-p', 'repeat_rate:=20.0', '-p', 'key_timeout:=0.6', '-p', 'speed:=2',
                        env=ros_env)
     teleop.wait_for_output('currently:\tspeed 2.0\tturn 1.0 ')
-    probe.spin_until(lambda: probe.node.count_subscribers('/turtle1/cmd_vel') == 2 and poses,
+    probe.spin_until(lambda: probe.node.count_subscribers('/turtle1/cmd_vel') == 2 and poses
+                     and probe.node.count_publishers('/turtle1/cmd_vel') == 1,
                      10, 'the turtle and the teleop')
+    # The teleop's side of the matches too: twists sent before it were lost (CI-like load saw
+    # 3 of the ~12).
+    probe.spin_for(0.5)
     start = poses[-1]
     teleop.press(b'i')  # one key press: repeated at 20 Hz until the key timeout stops it
 
