@@ -7,6 +7,7 @@ import time
 
 from ros2cli_lite.api import CliError
 from ros2cli_lite.command.service.api import lookup
+from ros2cli_lite.echo_options import add_output_options, conversion_options
 
 HELP = 'Echo a service'
 
@@ -18,34 +19,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         "'example_interfaces/srv/AddTwoInts')")
     parser.add_argument('--csv', action='store_true', default=False,
                         help='Output all recursive fields separated by commas (e.g. for plotting).')
-    parser.add_argument('--full-length', '-f', action='store_true',
-                        help='Output all elements for arrays, bytes, and string with a length > '
-                        "'--truncate-length', by default they are truncated after "
-                        "'--truncate-length' elements with '...''")
-    parser.add_argument('--truncate-length', '-l', type=unsigned_int,
-                        default=DEFAULT_TRUNCATE_LENGTH,
-                        help='The length to truncate arrays, bytes, and string to '
-                        f'(default: {DEFAULT_TRUNCATE_LENGTH})')
-    parser.add_argument('--no-arr', action='store_true',
-                        help="Don't print array fields of messages")
-    parser.add_argument('--no-str', action='store_true',
-                        help="Don't print string fields of messages")
-    parser.add_argument('--flow-style', action='store_true',
-                        help='Print collections in the block style (not available with csv format)')
-
-
-DEFAULT_TRUNCATE_LENGTH = 128
-
-
-def unsigned_int(text: str) -> int:
-    """argparse type of --truncate-length: ros2cli's message for anything else."""
-    try:
-        value = int(text)
-    except ValueError:
-        value = -1
-    if value < 0:
-        raise argparse.ArgumentTypeError('value must be non-negative integer')
-    return value
+    add_output_options(parser)
 
 
 EVENT_TYPES = {0: 'REQUEST_SENT', 1: 'REQUEST_RECEIVED', 2: 'RESPONSE_SENT',
@@ -79,8 +53,7 @@ def main(args: argparse.Namespace) -> int | str:
     with cli_node(spin_time=args.spin_time) as node:
         topic = args.service_name.rstrip('/') + '/_service_event'
 
-        options = {'truncate_length': None if args.full_length else args.truncate_length,
-                   'no_arr': args.no_arr, 'no_str': args.no_str}
+        options = conversion_options(args)
 
         def on_event(event) -> None:
             if args.csv:

@@ -8,20 +8,10 @@ import time
 from typing import Any
 
 from ros2cli_lite.command.topic.api import lookup_now, message_filter, positive_float
+from ros2cli_lite.echo_options import add_output_options, conversion_options
 from ros2cli_lite.qos import add_qos_arguments
 
 HELP = 'Output messages from a topic'
-DEFAULT_TRUNCATE_LENGTH = 128
-
-
-def _unsigned_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        value = -1
-    if value < 0:
-        raise argparse.ArgumentTypeError(f'value must be a non-negative integer, got {text!r}')
-    return value
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -38,20 +28,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="Echo a selected field of a message. Use '.' to select sub-fields. "
                         'For example, to echo the position field of a nav_msgs/msg/Odometry '
                         "message: 'ros2 topic echo /odom --field pose.pose.position'")
-    parser.add_argument('--full-length', '-f', action='store_true',
-                        help='Output all elements for arrays, bytes, and string with a length '
-                        "> '--truncate-length', by default they are truncated after "
-                        "'--truncate-length' elements with '...''")
-    parser.add_argument('--truncate-length', '-l', type=_unsigned_int,
-                        default=DEFAULT_TRUNCATE_LENGTH,
-                        help='The length to truncate arrays, bytes, and string to (default: '
-                        f'{DEFAULT_TRUNCATE_LENGTH})')
-    parser.add_argument('--no-arr', action='store_true',
-                        help="Don't print array fields of messages")
-    parser.add_argument('--no-str', action='store_true',
-                        help="Don't print string fields of messages")
-    parser.add_argument('--flow-style', action='store_true', help='Print collections in the block '
-                        'style (not available with csv format)')
+    add_output_options(parser)
     parser.add_argument('--no-lost-messages', action='store_true',
                         help="Don't report when a message is lost")
     parser.add_argument('--raw', action='store_true', help='Echo the raw binary representation')
@@ -80,8 +57,7 @@ class _Printer:
         self.args = args
         self.fields = fields
         self.keep = message_filter(args.filter_expr)
-        self.options = {'truncate_length': None if args.full_length else args.truncate_length,
-                        'no_arr': args.no_arr, 'no_str': args.no_str}
+        self.options = conversion_options(args)
         self.count = 0
         self.error: str | None = None
 

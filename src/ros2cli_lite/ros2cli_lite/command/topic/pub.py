@@ -7,6 +7,7 @@ import sys
 import time
 
 from ros2cli_lite.command.topic.api import positive_float
+from ros2cli_lite.echo_options import unsigned_int
 from ros2cli_lite.qos import add_qos_arguments
 
 HELP = 'Publish a message to a topic'
@@ -28,9 +29,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     group = parser.add_mutually_exclusive_group()
     group.add_argument('-1', '--once', action='store_true',
                        help='Publish one message and exit')
-    group.add_argument('-t', '--times', type=_non_negative_int, default=0,
+    group.add_argument('-t', '--times', type=unsigned_int, default=0,
                        help='Publish this number of times and then exit')
-    parser.add_argument('-w', '--wait-matching-subscriptions', type=_non_negative_int,
+    parser.add_argument('-w', '--wait-matching-subscriptions', type=unsigned_int,
                         default=None,
                         help='Wait until finding the specified number of matching subscriptions. '
                         'Defaults to 1 when using "-1"/"--once"/"--times", otherwise defaults '
@@ -44,16 +45,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         '(default: 0.1)')
     parser.add_argument('-n', '--node-name', help='Name of the created publishing node')
     add_qos_arguments(parser, 'publish', 'default')
-
-
-def _non_negative_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        value = -1
-    if value < 0:
-        raise argparse.ArgumentTypeError(f'value must be a non-negative integer, got {text!r}')
-    return value
 
 
 def runs_in_daemon(args: argparse.Namespace) -> bool:
