@@ -106,3 +106,37 @@ def test_change_state_event_refuses_an_unknown_transition():
     with pytest.raises(ValueError, match=r"given transition_id of '42', expected one of "
                        r'\{TRANSITION_CREATE: 0, TRANSITION_CONFIGURE: 1,'):
         ChangeState(lifecycle_node_matcher=matches_node_name('lc_talker'), transition_id=42)
+
+
+def test_hidden_lifecycle_node_needs_include_hidden_nodes(launch, ros_env):
+    """ros2lifecycle's fixture (simple_lifecycle_node) as its tests run it: one plain, one
+    hidden. Hidden managed nodes are left out of every verb unless asked for."""
+    fixture = ['ros2', 'run', 'ros2lifecycle_test_fixtures', 'simple_lifecycle_node']
+    plain = launch(argv=fixture, env=ros_env)
+    hidden = launch(argv=[*fixture, '--ros-args', '-r', '__node:=_hidden_test_lifecycle_node'],
+                    env=ros_env)
+    assert ros2(ros_env, 'lifecycle', 'get', '/test_lifecycle_node').stdout == \
+        'unconfigured [1]\n'
+    found = ros2(ros_env, 'lifecycle', 'get', '--include-hidden-nodes',
+                 '/_hidden_test_lifecycle_node')
+    assert (found.returncode, found.stdout) == (0, 'unconfigured [1]\n'), found.stderr
+    for verb in (['get'], ['list'], ['set']):
+        args = [*verb, '/_hidden_test_lifecycle_node'] + (['configure'] if verb == ['set'] else [])
+        refused = ros2(ros_env, 'lifecycle', *args)
+        assert (refused.returncode, refused.stderr) == (1, 'Node not found\n'), verb
+    assert ros2(ros_env, 'lifecycle', 'nodes', '-c').stdout == '1\n'
+    assert ros2(ros_env, 'lifecycle', 'nodes', '-a').stdout == \
+        '/_hidden_test_lifecycle_node\n/test_lifecycle_node\n'
+    assert ros2(ros_env, 'lifecycle', 'nodes', '-a', '-c').stdout == '2\n'
+
+    for transition, line in (('configure', r'on_configure\(\) is called\.'),
+                              ('activate', r'on_activate\(\) is called\.'),
+                              ('deactivate', r'on_deactivate\(\) is called\.'),
+                              ('cleanup', r'on cleanup is called\.')):
+        done = ros2(ros_env, 'lifecycle', 'set', '--include-hidden-nodes',
+                    '_hidden_test_lifecycle_node', transition)
+        assert (done.returncode, done.stdout) == (0, 'Transitioning successful\n'), done.stderr
+        hidden.wait_for_output(r'\[_hidden_test_lifecycle_node\]: ' + line)
+    assert ros2(ros_env, 'lifecycle', 'get', '--include-hidden-nodes',
+                '_hidden_test_lifecycle_node').stdout == 'unconfigured [1]\n'
+    assert plain.popen.poll() is None and hidden.popen.poll() is None

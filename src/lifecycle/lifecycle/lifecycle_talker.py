@@ -12,13 +12,14 @@ from __future__ import annotations
 import sys
 import time
 
+from node_runtime.rclcpp_parity import RclcppLifecycleTransitions
 from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.lifecycle import Node, Publisher, State, TransitionCallbackReturn
 from rclpy.timer import Timer
 from std_msgs.msg import String
 
 
-class LifecycleTalker(Node):
+class LifecycleTalker(RclcppLifecycleTransitions, Node):
     FIRST_COUNT = 1
     INACTIVE_TEXT = 'Lifecycle publisher is currently inactive. Messages are not published.'
     CLEANUP_TEXT = 'on cleanup is called.'
@@ -74,17 +75,6 @@ class LifecycleTalker(Node):
         if self._pub is not None:
             self.destroy_lifecycle_publisher(self._pub)
         self._timer = self._pub = None
-
-    def _LifecycleNodeMixin__change_state(self, transition_id: int) -> TransitionCallbackReturn:
-        # rclpy raises out of the change_state service for a transition the current state
-        # does not offer, which ends the node; rclcpp logs this line, answers success=False
-        # and stays where it was. Overrides rclpy's private __change_state for that.
-        label = self._state_machine.current_state[1]
-        if transition_id not in {t[0] for t in self._state_machine.available_transitions}:
-            self.get_logger().error(f'Unable to start transition {transition_id} from current '
-                                    f'state {label}: Transition is not registered.')
-            return TransitionCallbackReturn.FAILURE
-        return super()._LifecycleNodeMixin__change_state(transition_id)
 
 
 def run(talker_class: type[LifecycleTalker]) -> int:

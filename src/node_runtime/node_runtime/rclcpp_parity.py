@@ -6,12 +6,18 @@ nodes do neither. The tutorials' `ros2 param list`, `param dump`, `param load` a
 info` listings show them, so the stand-ins for rclcpp nodes (turtlesim, teleop, mimic,
 draw_square, demo_nodes_cpp's parameter_blackboard) declare them too, with rclcpp's values and
 rclcpp's refusal text for a read-only parameter.
+
+A managed (lifecycle) node asked for a transition its state does not offer: rclpy raises out
+of the change_state service, which ends the node; rclcpp logs one line, answers
+success=False and stays where it was. `RclcppLifecycleTransitions` gives rclpy's
+lifecycle nodes rclcpp's behaviour.
 """
 
 from __future__ import annotations
 
 from rcl_interfaces.msg import ParameterDescriptor, ParameterEvent, SetParametersResult
 from rclpy.exceptions import InvalidParameterTypeException, InvalidParameterValueException
+from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import qos_profile_parameter_events
@@ -49,6 +55,20 @@ class RclcppParameters:
                 f'{{{_rclcpp_type_name(declared)}}}, setting it to '
                 f'{{{_rclcpp_type_name(parameter.type_)}}} is not allowed.')
         return result
+
+
+class RclcppLifecycleTransitions:
+    """Mixin for an rclpy.lifecycle.Node: a transition the current state does not offer is
+    refused with rclcpp's error line, and the node keeps running."""
+
+    def _LifecycleNodeMixin__change_state(self, transition_id: int) -> TransitionCallbackReturn:
+        # overrides rclpy's private (name-mangled) __change_state, which raises for it
+        label = self._state_machine.current_state[1]
+        if transition_id not in {t[0] for t in self._state_machine.available_transitions}:
+            self.get_logger().error(f'Unable to start transition {transition_id} from current '
+                                    f'state {label}: Transition is not registered.')
+            return TransitionCallbackReturn.FAILURE
+        return super()._LifecycleNodeMixin__change_state(transition_id)
 
 
 def _rclcpp_type_name(kind: Parameter.Type) -> str:
