@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import datetime
 import hashlib
-import os
 import threading
 from pathlib import Path
 
@@ -213,36 +212,33 @@ def test_recorder_and_player_run_in_a_thread_and_cancel(tmp_path, ros_env, probe
         rosbag2_py.Player('loud')
 
 
-def test_definitions_of_interfaces_written_in_idl(tmp_path, monkeypatch):
-    """A type with no .msg file, or depending on one, is defined from .idl files (ros2idl);
-    a service's dependency without .msg is appended as IDL (Jazzy's definition source)."""
-    share = tmp_path / 'share' / 'idl_pkg'
-    (share / 'msg').mkdir(parents=True)
-    (share / 'srv').mkdir()
-    index = tmp_path / 'share' / 'ament_index' / 'resource_index' / 'packages'
-    index.mkdir(parents=True)
-    (index / 'idl_pkg').write_text('')
-    inner = 'module idl_pkg {\n  module msg {\n    struct Inner {\n      float x;\n    };\n  };\n'
-    inner += '};\n'
-    (share / 'msg' / 'Inner.idl').write_text(inner)
-    outer = '#include "idl_pkg/msg/Inner.idl"\nmodule idl_pkg { /* Outer */ };\n'
-    (share / 'msg' / 'Outer.msg').write_text('Inner a\n')
-    (share / 'msg' / 'Outer.idl').write_text(outer)
-    (share / 'srv' / 'Get.srv').write_text('Inner req\n---\nbool ok\n')
-    monkeypatch.setenv('AMENT_PREFIX_PATH', f"{tmp_path}:{os.environ['AMENT_PREFIX_PATH']}")
+def test_definitions_of_interfaces_written_in_idl():
+    """rosbag2_test_msgdefs (built by rosidl here): a type with no .msg file, or depending on
+    one, is defined from .idl files (ros2idl, the .msg's generated .idl); a service's
+    dependency without .msg is appended as IDL; .msg on .msg stays ros2msg (Jazzy's source)."""
     rule = '=' * 80 + '\n'
+    basic = ('module rosbag2_test_msgdefs {\n  module msg {\n    struct BasicIdl {\n'
+             '        float x;\n    };\n  };\n};\n')
     source = rosbag2_py.LocalMessageDefinitionSource()
 
-    found = source.get_full_text('idl_pkg/msg/Outer')
+    found = source.get_full_text('rosbag2_test_msgdefs/msg/ComplexMsgDependsOnIdl')
+    assert found.encoding == 'ros2idl', found.encoded_message_definition
+    first, second = found.encoded_message_definition.split(f'\n{rule}')
+    assert first.startswith(f'{rule}IDL: rosbag2_test_msgdefs/msg/ComplexMsgDependsOnIdl\n'
+                            '// generated from rosidl_adapter/resource/msg.idl.em\n')
+    assert '      rosbag2_test_msgdefs::msg::BasicIdl a;\n' in first
+    assert second == f'IDL: rosbag2_test_msgdefs/msg/BasicIdl\n{basic}'
+
+    found = source.get_full_text('rosbag2_test_msgdefs/srv/ComplexSrvIdl')
     assert (found.encoding, found.encoded_message_definition) == (
-        'ros2idl', f'{rule}IDL: idl_pkg/msg/Outer\n{outer}\n{rule}IDL: idl_pkg/msg/Inner\n{inner}')
-    found = source.get_full_text('idl_pkg/srv/Get')
+        'ros2idl', f'{rule}SRV: rosbag2_test_msgdefs/srv/ComplexSrvIdl\n'
+        'rosbag2_test_msgdefs/BasicIdl req\n---\nrosbag2_test_msgdefs/BasicIdl resp\n\n'
+        f'{rule}MSG: rosbag2_test_msgdefs/BasicIdl\n\n'
+        f'{rule}IDL: rosbag2_test_msgdefs/BasicIdl\n{basic}')
+    found = source.get_full_text('rosbag2_test_msgdefs/ComplexMsg')  # .msg files as before
     assert (found.encoding, found.encoded_message_definition) == (
-        'ros2idl', f'{rule}SRV: idl_pkg/srv/Get\nInner req\n---\nbool ok\n\n'
-        f'{rule}MSG: idl_pkg/Inner\n\n{rule}IDL: idl_pkg/Inner\n{inner}')
-    found = source.get_full_text('std_msgs/msg/String')  # .msg files as before
-    assert found.encoding == 'ros2msg' and found.encoded_message_definition.endswith(
-        '\nstring data\n')
+        'ros2msg', f'rosbag2_test_msgdefs/BasicMsg b\n\n{rule}'
+        'MSG: rosbag2_test_msgdefs/BasicMsg\nfloat32 c\n')
     found = source.get_full_text('no_such_pkg/msg/X')
     assert (found.encoding, found.encoded_message_definition) == ('unknown', '')
 
