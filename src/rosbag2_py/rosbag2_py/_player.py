@@ -25,7 +25,7 @@ from rosbag2_py._metadata_io import (
     service_type,
 )
 from rosbag2_py._playback_clock import PlaybackClock
-from rosbag2_py._player_services import PlayerServices
+from rosbag2_py._player_services import PlayerServices, Steps
 from rosbag2_py._session import SpaceKey
 from rosbag2_py._storage import StorageFilter, filter_selects
 
@@ -70,8 +70,7 @@ class PlayerNode:
         self.until = self._until()
         # Requests of the player's services, taken by the playing loop.
         self.seek_to: int | None = None
-        self.next_wanted = threading.Event()
-        self.next_played: list[bool] = []
+        self.steps = Steps()  # ~/play_next, ~/burst: messages to publish at once while paused
 
     def _until(self) -> int:
         """The last receive stamp to play (-1: all), from playback_duration/until_timestamp."""
@@ -210,6 +209,7 @@ class PlayerNode:
                         break
             finally:
                 self.finished.set()  # /clock stops with the last message
+                self.steps.wake()
                 services.close()
             self._wait_for_acks()
         except BagError as error:
@@ -238,17 +238,15 @@ class PlayerNode:
                     if stop.is_set() or (self.burst and sent >= self.burst):
                         return
                 elif not self.clock.sleep_until(stamp, lambda: stop.is_set() or (
-                        self.seek_to is not None or self.next_wanted.is_set())):
+                        self.seek_to is not None or self.steps.wanted())):
                     if stop.is_set():
                         return
                     if self.seek_to is not None:
                         break  # read again from the seek point
-                    self.clock.jump(stamp)  # play_next: this message now, then paused again
+                    self.clock.jump(stamp)  # play_next/burst: this message now, still paused
                 self._publish_now(topic, stamp, data)
                 sent += 1
-                if self.next_wanted.is_set():
-                    self.next_wanted.clear()
-                    self.next_played.append(True)
+                self.steps.published()
             else:
                 return
             start, self.seek_to = int(self.seek_to), None

@@ -47,12 +47,12 @@ class SequentialReader:
         if storage_id and storage_id not in STORAGES:
             raise RuntimeError(f"Unknown storage id '{storage_id}' (allowed: "
                                f"{', '.join(STORAGES)})")
-        self.open_uri(storage_options.uri)
+        self.open_uri(storage_options.uri, storage_options.storage_config_uri)
 
-    def open_uri(self, uri: str) -> None:
+    def open_uri(self, uri: str, storage_config_uri: str = '') -> None:
         self.close()
         try:
-            self._bag = BagReader(uri)
+            self._bag = BagReader(uri, storage_config_uri)
         except BagError as error:
             raise RuntimeError(str(error)) from None
         self._order = ReadOrder()

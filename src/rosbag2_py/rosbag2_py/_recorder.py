@@ -1,8 +1,11 @@
 """The rosbag2_recorder node: discovery, raw subscriptions, pause, clean close.
 
 Messages are stored as the CDR bytes the middleware delivers (raw subscriptions), stamped
-with their reception time, as rosbag2 does. Topics are discovered every polling interval
-until every requested one is subscribed. `rosbag2_py.Recorder` and `ros2 bag record` run it.
+with their reception time, as rosbag2 does, or with the latest /clock time with
+use_sim_time (then nothing is subscribed before the first /clock message). Topics are
+discovered every polling interval until every requested one is subscribed. In snapshot mode
+messages go to a ring buffer that `~/snapshot` writes out. `rosbag2_py.Recorder` and
+`ros2 bag record` run it; its services are in _recorder_services.
 """
 
 from __future__ import annotations
@@ -23,7 +26,9 @@ from rosbag2_py._metadata_io import (
     qos_to_dict,
     request_qos_for_offers,
 )
+from rosbag2_py._recorder_services import RecorderServices
 from rosbag2_py._session import SpaceKey, make_executor, spin_until
+from rosbag2_py._snapshot import SnapshotBuffer
 
 # Seconds a stopping recorder may spend recording what had arrived before the stop (each
 # queue holds up to 1000 messages: a recorder far behind loses the rest, and exits in time).
@@ -39,8 +44,14 @@ def _absolute(name: str) -> str:
 class RecorderNode:
     """What a recording does with its node; `options` is a rosbag2_py.RecordOptions."""
 
-    def __init__(self, node: Any, writer: BagWriter, options: Any):
+    def __init__(self, node: Any, writer: BagWriter, options: Any,
+                 snapshot: SnapshotBuffer | None = None):
         self.node = node
+        self.snapshot = snapshot  # snapshot mode: messages wait here for ~/snapshot
+        # use_sim_time: stamps are the node's ROS time, which /clock drives; nothing is
+        # subscribed before the first /clock message (as Jazzy: time 0 would come first).
+        self.sim_time = bool(options.use_sim_time)
+        self.clock_started = not self.sim_time
         self.log = node.get_logger()
         self.writer = writer
         self.options = options
@@ -94,6 +105,11 @@ class RecorderNode:
 
     # ---- discovery ----
     def discover(self) -> None:
+        if not self.clock_started:
+            if self.node.get_clock().now().nanoseconds == 0:
+                return
+            self.clock_started = True
+            self.log.info('Sim time /clock found, starting recording.')
         new: dict[str, int] = {}
         for name, types in self.node.get_topic_names_and_types():
             if name in self.subscriptions or name in self.skipped or not self._wanted(name, types):
@@ -176,26 +192,60 @@ class RecorderNode:
         self.taken += 1
         if self.paused or self.failed:
             return
+        stamp = self.node.get_clock().now().nanoseconds if self.sim_time \
+            else info['received_timestamp']
+        message = (name, data, stamp, info['source_timestamp'],
+                   info.get('publication_sequence_number') or 0)
+        if self.snapshot is not None:
+            self.snapshot.push(message)
+            return
+        self._write(message)
+
+    def _write(self, message: tuple) -> None:
         try:
-            self.writer.write(name, data, info['received_timestamp'], info['source_timestamp'],
-                              info.get('publication_sequence_number') or 0)
+            self.writer.write(*message)
         except (OSError, BagError) as error:
             self.failed = f'Failed to write to bag: {one_line(error)}'
+
+    def take_snapshot(self) -> bool:
+        """Write what the snapshot buffer holds (`~/snapshot`); False outside snapshot mode."""
+        if self.snapshot is None:
+            return False
+        for message in self.snapshot.take():
+            self._write(message)
+        return not self.failed
 
     # ---- pause ----
     def toggle_paused(self) -> None:
         self.paused = not self.paused
         self.log.info('Pausing recording.' if self.paused else 'Resuming recording.')
 
+    def pause(self) -> None:
+        if self.paused:
+            self.log.debug('Recorder is already in pause state.')
+        else:
+            self.paused = True
+            self.log.info('Pausing recording.')
+
+    def resume(self) -> None:
+        if not self.paused:
+            self.log.debug('Already in the recording.')
+        else:
+            self.paused = False
+            self.log.info('Resuming recording.')
+
     # ---- main loop ----
     def run(self, stop: Any) -> str | None:
         if not self.options.disable_keyboard_controls and self.keys.active:
             self.log.info('Press SPACE for pausing/resuming')
             self.keys.start()
+        services = RecorderServices(self)
         self.log.info('Event publisher thread: Starting')
         self.log.info('Listening for topics...')
         executor = make_executor(self.node, self.events)
         try:
+            if self.sim_time:
+                self.log.info('use_sim_time set, waiting for /clock before starting recording...')
             self.discover()
             if not self.options.is_discovery_disabled and not self.discovery_done:
                 self.discovery_timer = self.node.create_timer(
@@ -221,6 +271,7 @@ class RecorderNode:
                 self.node.destroy_subscription(subscription)
             executor.shutdown(timeout_sec=1.0)
             closing_error = self._close()
+            services.close()  # after the close: its write_split event is published
         self.log.info('Event publisher thread: Exiting')
         self.log.info('Recording stopped')
         if self.failed or closing_error:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from rosbag2_py._bag_files import reindex
+from rosbag2_py._bag_reindex import reindex
 from rosbag2_py._metadata_io import BagError
 from rosbag2_py._storage import StorageOptions
 

@@ -1,9 +1,9 @@
 """bag_rewrite: input bags copied into output bags chosen by a YAML file (`ros2 bag convert`).
 
 The file holds `output_bags:`, a list of storage options (uri, storage_id,
-max_bagfile_size, max_bagfile_duration, storage_preset_profile) with the record options that
-select topics (`all_topics`/`all`, `topics`, `regex`, `exclude` (a regular expression),
-`exclude_topics`) and compress them (`compression_mode`, `compression_format`,
+max_bagfile_size, max_bagfile_duration, storage_preset_profile, storage_config_uri) with the
+record options that select topics (`all_topics`/`all`, `topics`, `regex`, `exclude` (a regular
+expression), `exclude_topics`) and compress them (`compression_mode`, `compression_format`,
 `compression_queue_size`, `compression_threads`). Messages go out in received-time order.
 """
 
@@ -62,7 +62,8 @@ def rewrite(inputs: list[StorageOptions], output_options_path: str) -> None:
                 uri=str(bag['uri']), storage_id=str(bag.get('storage_id', '')),
                 max_bagfile_size=int(bag.get('max_bagfile_size', 0)),
                 max_bagfile_duration=int(bag.get('max_bagfile_duration', 0)),
-                storage_preset_profile=str(bag.get('storage_preset_profile', '')))
+                storage_preset_profile=str(bag.get('storage_preset_profile', '')),
+                storage_config_uri=str(bag.get('storage_config_uri', '') or ''))
         except (TypeError, ValueError):
             raise RuntimeError(f"Output bag '{bag['uri']}': max_bagfile_size and "
                                'max_bagfile_duration must be integers') from None

@@ -18,11 +18,13 @@ SIGNAL_CHECK_PERIOD = 0.1
 
 
 @contextmanager
-def ros_node(name: str, stop: threading.Event | None = None
+def ros_node(name: str, stop: threading.Event | None = None, use_sim_time: bool = False
              ) -> Iterator[tuple[Any, threading.Event]]:
-    """A node in its own context, with SIGINT/SIGTERM setting the yielded stop event."""
+    """A node in its own context, with SIGINT/SIGTERM setting the yielded stop event;
+    `use_sim_time`: its clock follows /clock (the node's `use_sim_time` parameter)."""
     import rclpy
     from rclpy.context import Context
+    from rclpy.parameter import Parameter
     from rclpy.signals import SignalHandlerOptions
 
     stop = stop or threading.Event()
@@ -33,7 +35,8 @@ def ros_node(name: str, stop: threading.Event | None = None
                 for s in (signal.SIGINT, signal.SIGTERM)} if main else {}
     context = Context()
     rclpy.init(args=[], context=context, signal_handler_options=SignalHandlerOptions.NO)
-    node = rclpy.create_node(name, context=context)
+    overrides = [Parameter('use_sim_time', Parameter.Type.BOOL, True)] if use_sim_time else []
+    node = rclpy.create_node(name, context=context, parameter_overrides=overrides)
     try:
         yield node, stop
     finally:

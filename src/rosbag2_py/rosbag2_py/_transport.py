@@ -16,6 +16,7 @@ from rosbag2_py._bag_files import BagReader, BagWriter
 from rosbag2_py._compression_options import compression_mode_from_string
 from rosbag2_py._metadata_io import BagError
 from rosbag2_py._session import ros_node
+from rosbag2_py._snapshot import SnapshotBuffer, check_snapshot_options
 from rosbag2_py._storage import StorageOptions
 
 LOG_LEVELS = ('debug', 'info', 'warn', 'error', 'fatal')
@@ -116,9 +117,10 @@ class _Cancellable:
         return stop
 
     @staticmethod
-    def _run(name: str, level: str, stop: threading.Event, body: Any) -> str | None:
+    def _run(name: str, level: str, stop: threading.Event, body: Any,
+             use_sim_time: bool = False) -> str | None:
         try:
-            with ros_node(name, stop) as (node, _stop):
+            with ros_node(name, stop, use_sim_time) as (node, _stop):
                 _set_level(node, level)
                 return body(node, stop)
         finally:
@@ -134,6 +136,11 @@ class Recorder(_Cancellable):
         """Record until cancel() (or SIGINT/SIGTERM); RuntimeError naming what failed."""
         from rosbag2_py._recorder import RecorderNode
 
+        if record_options.use_sim_time and record_options.is_discovery_disabled:
+            raise RuntimeError(
+                'use_sim_time and is_discovery_disabled both set, but are incompatible '
+                'settings. The /clock topic needs to be discovered to record with sim time.')
+        check_snapshot_options(storage_options)
         stop = self._stop_event()
         mode = record_options.compression_mode
         try:
@@ -141,7 +148,8 @@ class Recorder(_Cancellable):
                 storage_options.uri, storage_options.storage_id,
                 storage_options.max_bagfile_size, storage_options.max_bagfile_duration,
                 compression_mode_from_string(mode).name if mode else '',
-                record_options.compression_format, storage_options.storage_preset_profile)
+                record_options.compression_format, storage_options.storage_preset_profile,
+                storage_options.storage_config_uri)
         except (BagError, ValueError) as error:
             self._running.discard(stop)
             raise RuntimeError(str(error)) from None
@@ -154,9 +162,12 @@ class Recorder(_Cancellable):
             if writer.compression_mode:
                 node.get_logger().debug('Setting compression thread priority to '
                                         f'{record_options.compression_threads_priority}')
-            return RecorderNode(node, writer, record_options).run(stop)
+            snapshot = SnapshotBuffer(storage_options.max_cache_size) \
+                if storage_options.snapshot_mode else None
+            return RecorderNode(node, writer, record_options, snapshot).run(stop)
 
-        failure = self._run(record_options.node_prefix + node_name, self.log_level, stop, body)
+        failure = self._run(record_options.node_prefix + node_name, self.log_level, stop, body,
+                            record_options.use_sim_time)
         if failure:
             raise RuntimeError(failure)
 
@@ -173,7 +184,7 @@ class Player(_Cancellable):
             raise RuntimeError(f'rate must be greater than 0.0, got {play_options.rate:g}')
         stop = self._stop_event()
         try:
-            reader = BagReader(storage_options.uri)
+            reader = BagReader(storage_options.uri, storage_options.storage_config_uri)
         except BagError as error:
             self._running.discard(stop)
             raise RuntimeError(str(error)) from None

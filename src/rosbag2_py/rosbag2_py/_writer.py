@@ -15,6 +15,7 @@ from typing import Any
 from rosbag2_py._bag_files import COMPRESSION_FORMATS, STORAGES, BagWriter
 from rosbag2_py._compression_options import CompressionOptions, compression_mode_to_string
 from rosbag2_py._metadata_io import BagError
+from rosbag2_py._snapshot import SnapshotBuffer, check_snapshot_options
 from rosbag2_py._storage import ConverterOptions, StorageOptions, TopicMetadata
 
 _OPEN: weakref.WeakSet = weakref.WeakSet()
@@ -42,10 +43,12 @@ class SequentialWriter:
     def __init__(self) -> None:
         self._bag: BagWriter | None = None
         self._compression: CompressionOptions | None = None
+        self._snapshot: SnapshotBuffer | None = None
 
     def open(self, storage_options: StorageOptions,
              converter_options: ConverterOptions | None = None) -> None:
         self.close()
+        check_snapshot_options(storage_options)
         compression = self._compression
         try:
             self._bag = BagWriter(
@@ -53,9 +56,11 @@ class SequentialWriter:
                 storage_options.max_bagfile_size, storage_options.max_bagfile_duration,
                 compression_mode_to_string(compression.compression_mode) if compression else '',
                 compression.compression_format if compression else '',
-                storage_options.storage_preset_profile)
+                storage_options.storage_preset_profile, storage_options.storage_config_uri)
         except BagError as error:
             raise RuntimeError(str(error)) from None
+        self._snapshot = SnapshotBuffer(storage_options.max_cache_size) \
+            if storage_options.snapshot_mode else None
         self._bag.custom_data = dict(storage_options.custom_data)
         if compression:
             self._bag.compression_threads = compression.compression_threads
@@ -89,14 +94,30 @@ class SequentialWriter:
                             f'{type(message).__name__}: use rclpy.serialization.'
                             'serialize_message()')
         stamp = int(time_stamp)
-        bag.write(topic_name, bytes(message), stamp,
+        record = (topic_name, bytes(message), stamp,
                   stamp if publish_time_stamp is None else int(publish_time_stamp))
+        if self._snapshot is not None:
+            self._snapshot.push(record)
+        else:
+            bag.write(*record)
 
     def split_bagfile(self) -> None:
-        self._writer().split()
+        try:
+            self._writer().split()
+        except BagError as error:
+            raise RuntimeError(str(error)) from None
 
     def take_snapshot(self) -> bool:
-        return False  # snapshot mode (a ring buffer in memory) is not available here
+        """Write what the snapshot buffer holds (snapshot mode only, else False)."""
+        bag = self._writer()
+        if self._snapshot is None:
+            from rclpy.logging import get_logger
+            get_logger('rosbag2_cpp').warning(
+                'SequentialWriter take_snaphot called when snapshot mode is disabled')
+            return False
+        for record in self._snapshot.take():
+            bag.write(*record)
+        return True
 
     def close(self) -> None:
         if self._bag is not None:

@@ -20,5 +20,7 @@ def add_storage_preset_arguments(parser: argparse.ArgumentParser, default: str) 
         '--storage-preset-profile', type=str, default='',
         help='Select a configuration preset for storage.\n' + '\n'.join(lines))
     parser.add_argument(
-        '--storage-config-file', type=str, default='',
-        help='Path to a yaml file defining storage specific configurations (not read here).')
+        '--storage-config-file', type=argparse.FileType('r'),
+        help='Path to a yaml file defining storage specific configurations. See the storage '
+        'plugin documentation for the format of this file (MCAP: writer options such as '
+        'compression, chunkSize; SQLite3: write/read pragmas).')

@@ -42,8 +42,8 @@ def add_player_arguments(parser: argparse.ArgumentParser) -> None:
                         help='size of message queue rosbag tries to hold in memory to help '
                         'deterministic playback.')
     parser.add_argument('--storage-config-file', type=argparse.FileType('r'),
-                        help='Path to a yaml file defining storage specific configurations '
-                        '(not read here).')
+                        help='Path to a yaml file defining storage specific configurations. '
+                        'See storage plugin documentation for the format of this file.')
     parser.add_argument('-r', '--rate', type=float, default=1.0,
                         help='rate at which to play back messages. Valid range > 0.0.')
     parser.add_argument('-l', '--loop', action='store_true',
@@ -168,7 +168,9 @@ def play_options(args: argparse.Namespace):
         if args.service_requests_source == 'service_introspection'
         else ServiceRequestsSource.CLIENT_INTROSPECTION)
     options.topic_qos_profile_overrides = overrides
-    return StorageOptions(uri=args.bag_path, storage_id=args.storage), options
+    config = args.storage_config_file.name if args.storage_config_file else ''
+    return StorageOptions(uri=args.bag_path, storage_id=args.storage,
+                          storage_config_uri=config), options
 
 
 def main(args: argparse.Namespace) -> int | str:

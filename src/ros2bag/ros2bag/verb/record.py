@@ -71,6 +71,19 @@ def add_recorder_arguments(parser: argparse.ArgumentParser) -> None:
                         help='disables keyboard controls for recorder')
     parser.add_argument('--start-paused', action='store_true',
                         help='Start the recorder in a paused state.')
+    parser.add_argument('--use-sim-time', action='store_true',
+                        help='Use simulation time for message timestamps by subscribing to the '
+                        '/clock topic. Until first /clock message is received, no messages '
+                        'will be written to bag.')
+    parser.add_argument('--max-cache-size', type=int, default=100 * 1024 * 1024,
+                        help='Maximum size (in bytes) of messages to hold in the snapshot '
+                        'buffer (--snapshot-mode). Default: %(default)d. Without snapshot mode '
+                        'messages are written as they come (no write cache here).')
+    parser.add_argument('--snapshot-mode', action='store_true',
+                        help='Enable snapshot mode. Messages will not be written to the bagfile '
+                        'until the "/rosbag2_recorder/snapshot" service is called. e.g. \n '
+                        'ros2 service call /rosbag2_recorder/snapshot '
+                        'rosbag2_interfaces/Snapshot')
     parser.add_argument('--node-name', default='rosbag2_recorder',
                         help='Specify the recorder node name. Default is rosbag2_recorder.')
     parser.add_argument('--custom-data', type=str, metavar='KEY=VALUE', nargs='*', default=[],
@@ -139,6 +152,12 @@ def validate_parsed_arguments(args: argparse.Namespace, uri: str) -> str | None:
             return print_error(f"--custom-data: '{pair}' is not KEY=VALUE")
     if os.path.isdir(uri):
         return print_error(f"Output folder '{uri}' already exists.")
+    if args.use_sim_time and args.no_discovery:
+        return print_error(
+            '--use-sim-time and --no-discovery both set, but are incompatible settings. '
+            'The /clock topic needs to be discovered to record with sim time.')
+    if args.max_cache_size < 0:
+        return print_error(f'--max-cache-size must be 0 or positive, got {args.max_cache_size}')
     if args.compression_format and args.compression_mode == 'none':
         return print_error('Invalid choice: Cannot specify compression format without a '
                            'compression mode.')
@@ -156,6 +175,8 @@ def _options(args: argparse.Namespace, uri: str, overrides: dict):
         uri=uri, storage_id=args.storage, max_bagfile_size=args.max_bag_size,
         max_bagfile_duration=args.max_bag_duration,
         storage_preset_profile=args.storage_preset_profile,
+        storage_config_uri=args.storage_config_file.name if args.storage_config_file else '',
+        max_cache_size=args.max_cache_size, snapshot_mode=args.snapshot_mode,
         custom_data=dict(pair.split('=', 1) for pair in args.custom_data or []))
     record = RecordOptions()
     record.all_topics = args.all or args.all_topics
@@ -179,6 +200,7 @@ def _options(args: argparse.Namespace, uri: str, overrides: dict):
     record.topic_qos_profile_overrides = overrides
     record.include_hidden_topics = args.include_hidden_topics
     record.start_paused = args.start_paused
+    record.use_sim_time = args.use_sim_time
     record.disable_keyboard_controls = args.disable_keyboard_controls
     return storage, record
 
