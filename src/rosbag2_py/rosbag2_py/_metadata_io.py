@@ -38,6 +38,13 @@ def is_service_event_topic(name: str, type_name: str) -> bool:
             and type_name.endswith('_Event'))
 
 
+def event_topic(service: str) -> str:
+    """A service's event topic; a name that already is one stays (RecordOptions holds those)."""
+    name = service if service.startswith('/') else '/' + service
+    name = name.rstrip('/')
+    return name if name.endswith(SERVICE_EVENT_SUFFIX) else name + SERVICE_EVENT_SUFFIX
+
+
 def service_name(event_topic: str) -> str:
     return event_topic[:-len(SERVICE_EVENT_SUFFIX)]
 

@@ -19,6 +19,7 @@ from ros2cli_lite.node import wait_for_graph
 from rosbag2_py._bag_files import BagReader
 from rosbag2_py._metadata_io import (
     BagError,
+    event_topic,
     is_service_event_topic,
     offer_qos_for_recorded,
     service_name,
@@ -126,10 +127,10 @@ class PlayerNode:
         options = self.options
         rule = StorageFilter(
             topics=[_absolute(t) for t in options.topics_to_filter],
-            services_events=[_event_topic(s) for s in options.services_to_filter],
+            services_events=[event_topic(s) for s in options.services_to_filter],
             regex=options.regex_to_filter,
             exclude_topics=[_absolute(t) for t in options.exclude_topics_to_filter],
-            exclude_service_events=[_event_topic(s)
+            exclude_service_events=[event_topic(s)
                                     for s in options.exclude_service_events_to_filter],
             regex_to_exclude=options.exclude_regex_to_filter)
         return {t.name for t in self.reader.meta.topics if filter_selects(rule, t.name)}
@@ -305,8 +306,3 @@ class PlayerNode:
                 publisher.wait_for_all_acked(Duration(nanoseconds=int(left * 1e9)))
             except Exception:  # best effort publishers have nothing to ack
                 pass
-
-
-def _event_topic(service: str) -> str:
-    name = _absolute(service).rstrip('/')
-    return name if name.endswith('/_service_event') else name + '/_service_event'

@@ -22,6 +22,7 @@ from rosbag2_py._metadata_io import (
     SERVICE_EVENT_SUFFIX,
     BagError,
     TopicInfo,
+    event_topic,
     one_line,
     qos_to_dict,
     request_qos_for_offers,
@@ -60,13 +61,13 @@ class RecorderNode:
         self.subscriptions: dict[str, Any] = {}
         self.skipped: set[str] = set()
         self.requested = [_absolute(t) for t in options.topics]
-        self.requested_services = [_event_topic(s) for s in options.services]
+        self.requested_services = [event_topic(s) for s in options.services]
         self.all_topics = options.all_topics
         self.all_services = options.all_services
         self.topic_types = set(options.topic_types)
         self.exclude_topic_types = set(options.exclude_topic_types)
         self.exclude_topics = {_absolute(t) for t in options.exclude_topics}
-        self.exclude_services = {_event_topic(s) for s in options.exclude_service_events}
+        self.exclude_services = {event_topic(s) for s in options.exclude_service_events}
         self.regex = re.compile(options.regex) if options.regex else None
         self.exclude_regex = re.compile(options.exclude_regex) if options.exclude_regex else None
         self.overrides = dict(options.topic_qos_profile_overrides)
@@ -340,12 +341,6 @@ def _hash_string(value: Any) -> str:
         return ''
     return 'RIHS01_' + bytes(digest).hex()
 
-
-
-def _event_topic(service: str) -> str:
-    """A service's event topic; a name that already is one stays (RecordOptions holds those)."""
-    name = _absolute(service).rstrip('/')
-    return name if name.endswith(SERVICE_EVENT_SUFFIX) else name + SERVICE_EVENT_SUFFIX
 
 
 def _seconds(interval: Any) -> float:
