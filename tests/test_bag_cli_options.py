@@ -120,3 +120,34 @@ def test_an_older_bag_is_read_and_burst(tmp_path, ros_env, probe):
         wait_until(lambda: len(heard) == 3, 5, 'the burst messages')
     assert burst.returncode == 0, burst
     assert [m.data for m in heard] == ['old 0', 'old 1', 'old 2']
+
+
+def test_unpublished_topics_in_and_leaf_topics_out(launch, probe, tmp_path):
+    """--include-unpublished-topics subscribes to a topic only subscribers use (a publisher
+    coming later is recorded); --ignore-leaf-topics leaves out one nobody subscribes to."""
+    probe.collect(String, '/only_heard')
+    leaf = probe.node.create_publisher(String, '/leaf', 10)
+    both = probe.node.create_publisher(String, '/both', 10)
+    probe.collect(String, '/both')
+    bag = tmp_path / 'bag'
+    recorder = launch(argv=['ros2', 'bag', 'record', '-a', '--include-unpublished-topics',
+                            '--ignore-leaf-topics', '-f', 'cdr', '-o', str(bag)])
+    recorder.wait_for_output(r"Subscribed to topic '/only_heard'", timeout=15)
+    recorder.wait_for_output(r"Subscribed to topic '/both'")
+    late = probe.node.create_publisher(String, '/only_heard', 10)
+    probe.spin_until(lambda: late.get_subscription_count() == 2 and
+                     both.get_subscription_count() == 2, 10, 'the recorder on both topics')
+    for publisher in (late, leaf, both):
+        publisher.publish(String(data='hello'))
+    probe.spin_for(0.5)
+    recorder.popen.send_signal(signal.SIGINT)
+    assert recorder.popen.wait(timeout=15) == 0
+    assert "'/leaf'" not in recorder.output
+    reader = rosbag2_py.SequentialReader()
+    reader.open_uri(str(bag))
+    formats = {t.name: t.serialization_format for t in reader.get_all_topics_and_types()}
+    assert formats['/only_heard'] == formats['/both'] == 'cdr' and '/leaf' not in formats
+    heard = set()
+    while reader.has_next():
+        heard.add(reader.read_next()[0])
+    assert heard == {'/only_heard', '/both'}

@@ -121,8 +121,10 @@ class RecorderNode:
                 self.skipped.add(name)
                 continue
             infos = self.node.get_publishers_info_by_topic(name)
-            if not infos:
+            if not infos and not self.options.include_unpublished_topics:
                 continue  # a subscriber alone publishes nothing to record
+            if self.options.ignore_leaf_topics and not self.node.count_subscribers(name):
+                continue  # a leaf topic, nobody subscribed (looked at again next pass)
             if self._subscribe(name, types[0], infos):
                 new[name] = len(infos)
         self._wait_for_matches(new)
@@ -168,7 +170,8 @@ class RecorderNode:
             return False
         offers = [info.qos_profile for info in infos]
         self.writer.add_topic(TopicInfo(
-            name=name, type=type_name, serialization_format='cdr',
+            name=name, type=type_name,
+            serialization_format=self.options.rmw_serialization_format or 'cdr',
             offered_qos_profiles=[qos_to_dict(q) for q in offers],
             type_description_hash=_type_hash(infos)))
 

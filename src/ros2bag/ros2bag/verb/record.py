@@ -18,7 +18,11 @@ LOG_LEVELS = ['debug', 'info', 'warn', 'error', 'fatal']
 
 
 def add_recorder_arguments(parser: argparse.ArgumentParser) -> None:
-    from rosbag2_py import get_default_storage_id, get_registered_compressors
+    from rosbag2_py import (
+        get_default_storage_id,
+        get_registered_compressors,
+        get_registered_serializers,
+    )
 
     parser.formatter_class = argparse.RawTextHelpFormatter
     parser.add_argument('-o', '--output', help='Destination of the bagfile to create, '
@@ -54,6 +58,16 @@ def add_recorder_arguments(parser: argparse.ArgumentParser) -> None:
                         default=[], help='Space-delimited list of services not being recorded.')
     parser.add_argument('--include-hidden-topics', action='store_true',
                         help='Discover and record hidden topics as well.')
+    parser.add_argument('--include-unpublished-topics', action='store_true',
+                        help='Discover and record topics which have no publisher. '
+                        'Subscriptions on such topics will be made with default QoS unless '
+                        'otherwise specified in a QoS overrides file.')
+    parser.add_argument('--ignore-leaf-topics', action='store_true',
+                        help='Ignore topics without a subscription.')
+    parser.add_argument('-f', '--serialization-format', default='',
+                        choices=sorted(get_registered_serializers()),
+                        help='The rmw serialization format in which the messages are saved, '
+                        'defaults to the rmw currently in use.')
     parser.add_argument('--no-discovery', action='store_true',
                         help='Disables topic auto discovery during recording: only topics '
                         'present at startup will be recorded.')
@@ -199,6 +213,9 @@ def _options(args: argparse.Namespace, uri: str, overrides: dict):
     record.compression_threads_priority = args.compression_threads_priority
     record.topic_qos_profile_overrides = overrides
     record.include_hidden_topics = args.include_hidden_topics
+    record.include_unpublished_topics = args.include_unpublished_topics
+    record.ignore_leaf_topics = args.ignore_leaf_topics
+    record.rmw_serialization_format = args.serialization_format or 'cdr'
     record.start_paused = args.start_paused
     record.use_sim_time = args.use_sim_time
     record.disable_keyboard_controls = args.disable_keyboard_controls
