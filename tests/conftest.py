@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import signal
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -21,6 +22,15 @@ from support import (
 
 if not os.environ.get('_ROS_WHEELS_BOOTSTRAP_COMPLETE'):
     pytest.exit('run the tests through scripts/test (it sources the workspace)', returncode=4)
+
+# A shell without job control starts `scripts/test &` with SIGINT and SIGQUIT ignored, and
+# every process a test starts would inherit that: a node Ctrl-C'd while it starts would never
+# hear it (seen: the clean-exit tests failed in such a run). The tests are about Ctrl-C, so
+# the session takes Python's default back; exec resets it to the default in the children.
+for _signum, _default in ((signal.SIGINT, signal.default_int_handler),
+                          (signal.SIGQUIT, signal.SIG_DFL)):
+    if signal.getsignal(_signum) == signal.SIG_IGN:
+        signal.signal(_signum, _default)
 
 
 @pytest.fixture(scope='session', autouse=True)
