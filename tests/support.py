@@ -253,6 +253,24 @@ def ros2(env: dict[str, str], *args: str, timeout: float = 30.0,
                           stdin=None if stdin is not None else subprocess.DEVNULL)
 
 
+def ros2_side_by_side(env: dict[str, str], *commands: list[str], timeout: float = 30.0
+                      ) -> list[subprocess.CompletedProcess[str]]:
+    """Run independent `ros2` commands at once (each waits out a limit of its own), to the end
+    of all; their results in order, as ros2() gives them."""
+    started = [subprocess.Popen(['ros2', *args], env=env, text=True, stdin=subprocess.DEVNULL,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+               for args in commands]
+    try:
+        outputs = [process.communicate(timeout=timeout) for process in started]
+    finally:
+        for process in started:
+            if process.poll() is None:
+                process.kill()
+                process.communicate()
+    return [subprocess.CompletedProcess(process.args, process.returncode, out, err)
+            for process, (out, err) in zip(started, outputs, strict=True)]
+
+
 def cli_test_node_argv() -> list[str]:
     """Command line of tests/cli_test_node.py (services, a topic and parameters to inspect)."""
     import sys

@@ -24,9 +24,17 @@ PARAMETERS = ['enabled', 'label', 'ratio', 'speed', 'start_type_description_serv
               'use_sim_time']
 
 
-@pytest.fixture
-def node(launch):
-    process = launch(argv=cli_test_node_argv())
+@pytest.fixture(scope='module')
+def ros_env(module_ros_env):
+    """One domain (and one daemon) for the module: every test inspects the one node below."""
+    return module_ros_env
+
+
+@pytest.fixture(scope='module')
+def node(module_launch):
+    """One cli_test_node for the module: the tests read it, and the one that changes a
+    parameter (test_param_set_and_describe) runs after the one that reads their defaults."""
+    process = module_launch(argv=cli_test_node_argv())
     process.wait_for_output('^READY$')
     return process
 

@@ -7,7 +7,7 @@ import subprocess
 
 import pytest
 
-from support import TestNode, executable, ros2
+from support import TestNode, executable, ros2, ros2_side_by_side
 
 QOS = [f'qos_overrides./parameter_events.publisher.{name}'
        for name in ('depth', 'durability', 'history', 'reliability')]
@@ -198,8 +198,10 @@ def test_param_verbs_give_up_on_a_node_that_never_answers(ros_env, launch):
     import sys
     stuck = launch(argv=[sys.executable, '-c', STUCK_NODE])
     stuck.wait_for_output('created')
-    for verb in (['list', '/stuck'], ['get', '/stuck', 'use_sim_time'], ['dump', '/stuck']):
-        result = ros2(ros_env, 'param', *verb, timeout=40)
+    verbs = (['list', '/stuck'], ['get', '/stuck', 'use_sim_time'], ['dump', '/stuck'])
+    # Each waits out the same no-answer limit on its own: side by side, not one after another.
+    results = ros2_side_by_side(ros_env, *(['param', *verb] for verb in verbs), timeout=40)
+    for verb, result in zip(verbs, results, strict=True):
         assert result.returncode == 1, verb
         assert result.stderr.strip().splitlines()[-1].endswith(
             's: the node is not spinning or is busy in a callback'), (verb, result.stderr)

@@ -15,7 +15,7 @@ from rclpy.qos import (
 from std_msgs.msg import String
 
 from ros2cli_lite import qos as cli_qos
-from support import Background, ros2
+from support import Background, ros2, ros2_side_by_side
 
 WARN = r'\[WARN\] \[\d+\.\d+\] \[_ros2cli_\d+\]: '
 
@@ -68,13 +68,16 @@ def test_incompatible_qos_is_warned_in_the_cli_and_from_the_daemon(probe, ros_en
     assert latched and volatile
     assert '/volatile' in ros2(ros_env, 'topic', 'list').stdout  # the daemon knows the graph
     with Background(probe):
-        # echo --once --timeout: run by the daemon; without --once: by the CLI itself.
-        daemon = ros2(ros_env, 'topic', 'echo', '--once', '--timeout', '3', '--qos-reliability',
-                      'reliable', '/volatile', 'std_msgs/msg/String')
-        direct = ros2(ros_env, 'topic', 'echo', '--timeout', '3', '--once', '--no-daemon',
-                      '--qos-reliability', 'reliable', '/volatile', 'std_msgs/msg/String')
-        pub = ros2(ros_env, 'topic', 'pub', '-t', '1', '-w', '0', '--keep-alive', '2',
-                   '/wants_latched', 'std_msgs/msg/String', 'data: x')
+        # echo --once --timeout: run by the daemon; without --once: by the CLI itself. The
+        # three wait out their own time limits: side by side.
+        daemon, direct, pub = ros2_side_by_side(
+            ros_env,
+            ['topic', 'echo', '--once', '--timeout', '3', '--qos-reliability', 'reliable',
+             '/volatile', 'std_msgs/msg/String'],
+            ['topic', 'echo', '--timeout', '3', '--once', '--no-daemon', '--qos-reliability',
+             'reliable', '/volatile', 'std_msgs/msg/String'],
+            ['topic', 'pub', '-t', '1', '-w', '0', '--keep-alive', '2', '/wants_latched',
+             'std_msgs/msg/String', 'data: x'])
     for result in (daemon, direct):
         assert re.search(WARN + re.escape(
             "New publisher discovered on topic '/volatile', offering incompatible QoS. No "

@@ -20,9 +20,11 @@ SERVICES = [*PARAM_SERVICES, ('/flag', 'std_srvs/srv/SetBool'), ('/pen', 'turtle
 UINT8 = '[0, 255]'
 
 
-@pytest.fixture
-def node(launch):
-    process = launch(argv=cli_test_node_argv())
+@pytest.fixture(scope='module')
+def node(module_launch):
+    """One cli_test_node for the tests that inspect or call it (in module_ros_env): none
+    changes what the others see (its services only log the requests they get)."""
+    process = module_launch(argv=cli_test_node_argv())
     process.wait_for_output('^READY$')
     return process
 
@@ -31,10 +33,10 @@ def lines(*items):
     return ''.join(f'{item}\n' for item in items)
 
 
-def test_list_prints_every_visible_service_sorted(ros_env, node):
-    first = ros2(ros_env, 'service', 'list')  # starts the daemon: complete, if not quick
+def test_list_prints_every_visible_service_sorted(module_ros_env, node):
+    first = ros2(module_ros_env, 'service', 'list')  # starts the daemon: complete, if not quick
     start = time.monotonic()
-    result = ros2(ros_env, 'service', 'list')
+    result = ros2(module_ros_env, 'service', 'list')
     elapsed = time.monotonic() - start
     assert first.stdout == result.stdout
     assert (result.stdout, result.stderr, result.returncode) == (
@@ -42,35 +44,35 @@ def test_list_prints_every_visible_service_sorted(ros_env, node):
     assert elapsed < 2.5, f'service list took {elapsed:.2f} s'
 
 
-def test_list_variants(ros_env, node):
-    typed = ros2(ros_env, 'service', 'list', '-t')
+def test_list_variants(module_ros_env, node):
+    typed = ros2(module_ros_env, 'service', 'list', '-t')
     assert typed.stdout == lines(*(f'{name} [{kind}]' for name, kind in SERVICES))
-    assert ros2(ros_env, 'service', 'list', '-c').stdout == '9\n'
+    assert ros2(module_ros_env, 'service', 'list', '-c').stdout == '9\n'
     hidden = [('/_hidden_flag', 'std_srvs/srv/SetBool'), *SERVICES]
     for args in (['service', 'list', '--include-hidden-services'],
                  ['service', '--include-hidden-services', 'list']):
-        assert ros2(ros_env, *args).stdout == lines(*(name for name, _ in hidden))
+        assert ros2(module_ros_env, *args).stdout == lines(*(name for name, _ in hidden))
 
 
-def test_type_find_info(ros_env, node):
-    result = ros2(ros_env, 'service', 'type', '/pen')
+def test_type_find_info(module_ros_env, node):
+    result = ros2(module_ros_env, 'service', 'type', '/pen')
     assert (result.stdout, result.returncode) == ('turtlesim/srv/SetPen\n', 0)
-    unknown = ros2(ros_env, 'service', 'type', '--spin-time', '1', '/nope')
+    unknown = ros2(module_ros_env, 'service', 'type', '--spin-time', '1', '/nope')
     assert (unknown.stdout, unknown.stderr, unknown.returncode) == ('', '', 1)
-    hidden = ros2(ros_env, 'service', 'type', '--spin-time', '1', '/_hidden_flag')
+    hidden = ros2(module_ros_env, 'service', 'type', '--spin-time', '1', '/_hidden_flag')
     assert hidden.returncode == 1
-    shown = ros2(ros_env, 'service', '--include-hidden-services', 'type', '/_hidden_flag')
+    shown = ros2(module_ros_env, 'service', '--include-hidden-services', 'type', '/_hidden_flag')
     assert shown.stdout == 'std_srvs/srv/SetBool\n'
-    found = ros2(ros_env, 'service', 'find', 'rcl_interfaces/srv/GetParameters')
+    found = ros2(module_ros_env, 'service', 'find', 'rcl_interfaces/srv/GetParameters')
     assert found.stdout == '/cli_test_node/get_parameters\n'
-    info = ros2(ros_env, 'service', 'info', '/flag')
+    info = ros2(module_ros_env, 'service', 'info', '/flag')
     assert info.stdout == 'Type: std_srvs/srv/SetBool\nClients count: 0\nServices count: 1\n'
-    missing = ros2(ros_env, 'service', 'info', '--spin-time', '1', '/nope')
+    missing = ros2(module_ros_env, 'service', 'info', '--spin-time', '1', '/nope')
     assert (missing.stderr, missing.returncode) == ("Unknown service '/nope'\n", 1)
 
 
-def test_call_prints_request_and_response(ros_env, node):
-    result = ros2(ros_env, 'service', 'call', '/pen', 'turtlesim/srv/SetPen',
+def test_call_prints_request_and_response(module_ros_env, node):
+    result = ros2(module_ros_env, 'service', 'call', '/pen', 'turtlesim/srv/SetPen',
                   '{r: 255, g: 0, b: 0, width: 3, off: 0}')
     # A fresh command node may not have matched /pen within its quiet grace on a loaded machine
     # (CI did so once): it then says so first, as ros2cli always does.
@@ -81,7 +83,7 @@ def test_call_prints_request_and_response(ros_env, node):
         'response:\nturtlesim.srv.SetPen_Response()\n\n', '', 0)
     node.wait_for_output(r'REQUEST /pen turtlesim\.srv\.SetPen_Request\(r=255, g=0, b=0, '
                          r'width=3, off=0\)')
-    flag = ros2(ros_env, 'service', 'call', '/flag', 'std_srvs/SetBool', 'data: true')
+    flag = ros2(module_ros_env, 'service', 'call', '/flag', 'std_srvs/SetBool', 'data: true')
     # /flag's endpoints are discovered apart from /pen's: when they are not matched yet the
     # command says so first, as ros2cli does.
     assert flag.stdout.removeprefix('waiting for service to become available...\n') == (
@@ -89,22 +91,23 @@ def test_call_prints_request_and_response(ros_env, node):
         "response:\nstd_srvs.srv.SetBool_Response(success=True, message='flag is True')\n\n")
 
 
-def test_call_yaml_11_keys_are_field_names(ros_env, node):
-    result = ros2(ros_env, 'service', 'call', '/pen', 'turtlesim/srv/SetPen', '{off: 1, r: 7}')
+def test_call_yaml_11_keys_are_field_names(module_ros_env, node):
+    result = ros2(module_ros_env, 'service', 'call', '/pen', 'turtlesim/srv/SetPen',
+                  '{off: 1, r: 7}')
     assert result.returncode == 0, result.stderr
     assert 'SetPen_Request(r=7, g=0, b=0, width=0, off=1)' in result.stdout
 
 
-def test_call_defaults_and_int_for_float(ros_env, node):
-    result = ros2(ros_env, 'service', 'call', '/pen', 'turtlesim/srv/SetPen')
+def test_call_defaults_and_int_for_float(module_ros_env, node):
+    result = ros2(module_ros_env, 'service', 'call', '/pen', 'turtlesim/srv/SetPen')
     assert 'SetPen_Request(r=0, g=0, b=0, width=0, off=0)' in result.stdout
     # ints are fine for float fields (checked on a message only: nothing is sent)
-    pub = ros2(ros_env, 'topic', 'pub', '--once', '-w', '0', '/nowhere', 'turtlesim/msg/Pose',
-               '{x: 2, theta: 0.5}')
+    pub = ros2(module_ros_env, 'topic', 'pub', '--once', '-w', '0', '/nowhere',
+               'turtlesim/msg/Pose', '{x: 2, theta: 0.5}')
     assert 'turtlesim.msg.Pose(x=2.0, y=0.0, theta=0.5, linear_velocity=0.0, ' \
            'angular_velocity=0.0)' in pub.stdout
-    nan = ros2(ros_env, 'topic', 'pub', '--once', '-w', '0', '/nowhere', 'turtlesim/msg/Pose',
-               '{x: .nan, y: -.inf}')
+    nan = ros2(module_ros_env, 'topic', 'pub', '--once', '-w', '0', '/nowhere',
+               'turtlesim/msg/Pose', '{x: .nan, y: -.inf}')
     assert 'turtlesim.msg.Pose(x=nan, y=-inf, theta=0.0' in nan.stdout, nan.stderr
 
 
@@ -133,11 +136,12 @@ def test_pub_refuses_bad_values(ros_env, type_name, values, message):
     ('{colour: 1}', "'colour' is not a field of turtlesim/srv/SetPen_Request "
                     '(fields: r, g, b, width, off)'),
 ])
-def test_call_refuses_bad_values_before_sending(ros_env, node, values, message):
-    result = ros2(ros_env, 'service', 'call', '/pen', 'turtlesim/srv/SetPen', values)
+def test_call_refuses_bad_values_before_sending(module_ros_env, node, values, message):
+    before = len(node.output)  # the shared node logged the other tests' requests
+    result = ros2(module_ros_env, 'service', 'call', '/pen', 'turtlesim/srv/SetPen', values)
     assert (result.stdout, result.stderr, result.returncode) == (
         '', f'Failed to populate field: {message}\n', 1)
-    assert 'REQUEST' not in node.output
+    assert 'REQUEST' not in node.output[before:]
 
 
 def test_call_refuses_int64_overflow_and_non_mapping(ros_env):

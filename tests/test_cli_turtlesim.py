@@ -12,8 +12,16 @@ PARAM_SERVICES = ['describe_parameters', 'get_parameter_types', 'get_parameters'
                   'set_parameters_atomically']
 
 
+@pytest.fixture(scope='module')
+def turtlesim(module_turtlesim):
+    """One turtlesim (in module_ros_env) for the tests that leave its graph as it is: the pen
+    colour they set is not looked at, and background_r is changed by the last one only."""
+    return module_turtlesim
+
+
 @pytest.fixture
-def turtlesim(launch):
+def own_turtlesim(launch):
+    """A turtlesim of the test's own (in ros_env), for a test that adds a turtle."""
     process = launch('turtlesim', 'turtlesim_node', '--headless')
     process.wait_for_output(r'Spawning turtle \[turtle1\]')
     return process
@@ -27,10 +35,10 @@ def check(result, stdout, stderr='', code=0):
     assert (result.stdout, result.stderr, result.returncode) == (stdout, stderr, code)
 
 
-def test_service_list_is_the_tutorials(ros_env, turtlesim):
-    first = ros2(ros_env, 'service', 'list')  # starts the daemon: complete, if not quick
+def test_service_list_is_the_tutorials(module_ros_env, turtlesim):
+    first = ros2(module_ros_env, 'service', 'list')  # starts the daemon: complete, if not quick
     start = time.monotonic()
-    result = ros2(ros_env, 'service', 'list')
+    result = ros2(module_ros_env, 'service', 'list')
     elapsed = time.monotonic() - start
     assert first.stdout == result.stdout
     check(result, lines(
@@ -39,18 +47,18 @@ def test_service_list_is_the_tutorials(ros_env, turtlesim):
     assert elapsed < 2.5, f'ros2 service list took {elapsed:.2f} s'
 
 
-def test_service_type_interface_show_and_call_set_pen(ros_env, turtlesim):
-    check(ros2(ros_env, 'service', 'type', '/turtle1/set_pen'), 'turtlesim/srv/SetPen\n')
-    check(ros2(ros_env, 'interface', 'show', 'turtlesim/srv/SetPen'),
+def test_service_type_interface_show_and_call_set_pen(module_ros_env, turtlesim):
+    check(ros2(module_ros_env, 'service', 'type', '/turtle1/set_pen'), 'turtlesim/srv/SetPen\n')
+    check(ros2(module_ros_env, 'interface', 'show', 'turtlesim/srv/SetPen'),
           'uint8 r\nuint8 g\nuint8 b\nuint8 width\nuint8 off\n---\n')
-    check(ros2(ros_env, 'service', 'call', '/turtle1/set_pen', 'turtlesim/srv/SetPen',
+    check(ros2(module_ros_env, 'service', 'call', '/turtle1/set_pen', 'turtlesim/srv/SetPen',
                '{r: 255, g: 0, b: 0, width: 3, off: 0}'),
           'requester: making request: '
           'turtlesim.srv.SetPen_Request(r=255, g=0, b=0, width=3, off=0)\n\n'
           'response:\nturtlesim.srv.SetPen_Response()\n\n')
 
 
-def test_service_call_spawn(ros_env, turtlesim):
+def test_service_call_spawn(ros_env, own_turtlesim):
     check(ros2(ros_env, 'service', 'call', '/spawn', 'turtlesim/srv/Spawn',
                "{x: 2, y: 2, theta: 0.2, name: ''}"),
           "requester: making request: turtlesim.srv.Spawn_Request(x=2.0, y=2.0, theta=0.2, "
@@ -60,15 +68,15 @@ def test_service_call_spawn(ros_env, turtlesim):
     check(bad, '', "Failed to populate field: 'r' must be an integer in [0, 255], got 300\n", 1)
 
 
-def test_topic_echo_once_pose(ros_env, turtlesim):
-    check(ros2(ros_env, 'topic', 'echo', '--once', '/turtle1/pose'),
+def test_topic_echo_once_pose(module_ros_env, turtlesim):
+    check(ros2(module_ros_env, 'topic', 'echo', '--once', '/turtle1/pose'),
           'x: 5.544444561004639\ny: 5.544444561004639\ntheta: 0.0\nlinear_velocity: 0.0\n'
           'angular_velocity: 0.0\n---\n')
 
 
-def test_node_info_turtlesim(ros_env, turtlesim):
-    check(ros2(ros_env, 'node', 'list'), '/turtlesim\n')
-    check(ros2(ros_env, 'node', 'info', '/turtlesim'), lines(
+def test_node_info_turtlesim(module_ros_env, turtlesim):
+    check(ros2(module_ros_env, 'node', 'list'), '/turtlesim\n')
+    check(ros2(module_ros_env, 'node', 'info', '/turtlesim'), lines(
         '/turtlesim',
         '  Subscribers:',
         '    /parameter_events: rcl_interfaces/msg/ParameterEvent',
@@ -99,17 +107,18 @@ def test_node_info_turtlesim(ros_env, turtlesim):
         '  Action Clients:', ''))
 
 
-def test_topic_list_and_params(ros_env, turtlesim):
-    check(ros2(ros_env, 'topic', 'list'), lines(
+def test_topic_list_and_params(module_ros_env, turtlesim):
+    check(ros2(module_ros_env, 'topic', 'list'), lines(
         '/parameter_events', '/rosout', '/turtle1/cmd_vel', '/turtle1/color_sensor',
         '/turtle1/pose'))
-    check(ros2(ros_env, 'param', 'get', '/turtlesim', 'background_r'), 'Integer value is: 69\n')
-    check(ros2(ros_env, 'param', 'set', '/turtlesim', 'background_r', '150'),
+    check(ros2(module_ros_env, 'param', 'get', '/turtlesim', 'background_r'),
+          'Integer value is: 69\n')
+    check(ros2(module_ros_env, 'param', 'set', '/turtlesim', 'background_r', '150'),
           'Set parameter successful\n')
-    check(ros2(ros_env, 'param', 'get', '/turtlesim', 'background_r'),
+    check(ros2(module_ros_env, 'param', 'get', '/turtlesim', 'background_r'),
           'Integer value is: 150\n')
-    listed = ros2(ros_env, 'param', 'list', '/turtlesim').stdout.splitlines()
+    listed = ros2(module_ros_env, 'param', 'list', '/turtlesim').stdout.splitlines()
     assert {'  background_b', '  background_g', '  background_r', '  holonomic',
             '  use_sim_time'} <= set(listed)
-    refused = ros2(ros_env, 'param', 'set', '/turtlesim', 'background_r', '300')
+    refused = ros2(module_ros_env, 'param', 'set', '/turtlesim', 'background_r', '300')
     assert re.match(r'Setting parameter failed: ', refused.stderr), refused.stderr

@@ -18,7 +18,17 @@ from geometry_msgs.msg import Twist
 from rcl_interfaces.srv import GetParameters
 from turtlesim.msg import Pose
 
-from support import REPO, Background, ros2, turtle_qos, wait_until
+from support import (
+    REPO,
+    Background,
+    TestNode,
+    leased_domain,
+    ros2,
+    ros_environment,
+    stop_daemon,
+    turtle_qos,
+    wait_until,
+)
 
 DATA = REPO / 'tests' / 'data' / 'launch'
 
@@ -136,9 +146,10 @@ def test_mimic_tutorial_launch_file_runs_unchanged(launch, ros_env, probe, launc
     assert 'Traceback' not in out
 
 
-@pytest.mark.parametrize(('kind', 'spawn_x'), [('py', 2.0), ('yaml', 5.0)])
-def test_substitutions_tutorial_runs_unchanged(launch, ros_env, probe, tmp_path, kind, spawn_x):
-    prefix = tutorial_package(tmp_path / 'install', 'launch_tutorial',
+def start_substitutions(launch, ros_env, directory: Path, kind: str):
+    """The tutorial's package (its `kind` files) installed under `directory`, its
+    `--show-args` transcript checked, and example_main_launch started."""
+    prefix = tutorial_package(directory / 'install', 'launch_tutorial',
                               [f'example_main_launch.{kind}',
                                f'example_substitutions_launch.{kind}'])
     env = headless(ros_env, prefix)
@@ -150,8 +161,11 @@ def test_substitutions_tutorial_runs_unchanged(launch, ros_env, probe, tmp_path,
         "\n    'use_provided_red':\n        no description given\n        (default: 'False')\n"
         "\n    'new_background_r':\n        no description given\n        (default: '200')\n"
     ), shown.stdout + shown.stderr
-    run = launch(argv=['ros2', 'launch', 'launch_tutorial', f'example_main_launch.{kind}'],
-                 env=env)
+    return launch(argv=['ros2', 'launch', 'launch_tutorial', f'example_main_launch.{kind}'],
+                  env=env)
+
+
+def check_substitutions(run, probe, spawn_x: float) -> None:
     wait_for_nodes(probe, {'/turtlesim2/sim'}, run)
     poses = probe.collect(Pose, '/turtlesim2/turtle2/pose', turtle_qos())
     with Background(probe):
@@ -160,6 +174,25 @@ def test_substitutions_tutorial_runs_unchanged(launch, ros_env, probe, tmp_path,
     wait_for_background_r(probe, '/turtlesim2/sim', run)
     out = stop(run)
     assert 'Traceback' not in out
+
+
+def test_substitutions_tutorial_runs_unchanged(launch, ros_env, probe, tmp_path):
+    # The Python files (spawn at x = 2) and the YAML ones (x = 5) side by side, YAML in a
+    # domain of its own: the two runs overlap their start-up and the tutorial's 2 s timer.
+    with leased_domain() as other:
+        other_env = ros_environment(other)
+        other_probe = TestNode(other)
+        runs = []
+        try:
+            runs.append(start_substitutions(launch, ros_env, tmp_path / 'py', 'py'))
+            runs.append(start_substitutions(launch, other_env, tmp_path / 'yaml', 'yaml'))
+            check_substitutions(runs[0], probe, 2.0)
+            check_substitutions(runs[1], other_probe, 5.0)
+        finally:
+            for run in runs:
+                run.stop()  # within the lease of its domain
+            other_probe.close()
+            stop_daemon(other_env)  # if the tutorial's `ros2 param set` started one
 
 
 def test_parameters_tutorial_launch_file_runs_unchanged(launch, ros_env, tmp_path):

@@ -6,7 +6,7 @@ from __future__ import annotations
 import re
 import time
 
-from support import ros2
+from support import ros2_side_by_side
 
 ECHO_BLOCK = re.compile(
     r'^At time 0\.0\n'
@@ -41,29 +41,32 @@ def test_static_transform_publisher_and_a_late_tf2_echo(launch) -> None:
 def test_static_transform_publisher_old_style_and_bad_input(launch, ros_env) -> None:
     old = launch(argv=['ros2', 'run', 'tf2_ros', 'static_transform_publisher',
                        '0', '0', '1', '0', '0', '0', 'world', 'mystaticturtle'])
+    # Five commands refused at once, independent of each other and of `old`: all side by side.
+    bad, both, same, usage, rate = ros2_side_by_side(
+        ros_env,
+        ['run', 'tf2_ros', 'static_transform_publisher', '--x', 'one', '--frame-id', 'a',
+         '--child-frame-id', 'b'],
+        ['run', 'tf2_ros', 'static_transform_publisher', '--yaw', '1', '--qw', '1',
+         '--frame-id', 'a', '--child-frame-id', 'b'],
+        ['run', 'tf2_ros', 'static_transform_publisher', '--frame-id', 'a',
+         '--child-frame-id', 'a'],
+        ['run', 'tf2_ros', 'tf2_echo', 'world'],
+        ['run', 'tf2_ros', 'tf2_echo', 'a', 'b', '1.0foo'])
     old.wait_for_output(r'^\[WARN\] \[[\d.]+\] \[\]: Old-style arguments are deprecated; see '
                         r'--help for new-style arguments$', timeout=20)
     old.wait_for_output(r"translation: \('0\.000000', '0\.000000', '1\.000000'\)", timeout=20)
     assert old.stop() == 0
 
-    bad = ros2(ros_env, 'run', 'tf2_ros', 'static_transform_publisher', '--x', 'one',
-               '--frame-id', 'a', '--child-frame-id', 'b')
     assert bad.returncode == 1
     error = bad.stderr.split('[ros2run]')[0]
     assert re.fullmatch(r'\[ERROR\] \[[\d.]+\] \[\]: error parsing command line arguments: '
                         r'Failed to parse --x argument as float\n', error), error
     assert bad.stdout.startswith('usage: static_transform_publisher [--x X]')
-    both = ros2(ros_env, 'run', 'tf2_ros', 'static_transform_publisher', '--yaw', '1', '--qw',
-                '1', '--frame-id', 'a', '--child-frame-id', 'b')
     assert 'Cannot specify both quaternion and Euler rotations' in both.stderr
-    same = ros2(ros_env, 'run', 'tf2_ros', 'static_transform_publisher', '--frame-id', 'a',
-                '--child-frame-id', 'a')
     assert same.returncode == 1
     assert "cannot publish static transform from 'a' to 'a', exiting" in same.stderr
-    usage = ros2(ros_env, 'run', 'tf2_ros', 'tf2_echo', 'world')
     assert usage.returncode == 1
     assert usage.stdout.startswith('Usage: tf2_echo source_frame target_frame [echo_rate]\n')
-    rate = ros2(ros_env, 'run', 'tf2_ros', 'tf2_echo', 'a', 'b', '1.0foo')
     assert rate.returncode == 2
     assert rate.stderr.startswith(
         "Failed to convert rate argument '1.0foo' to a floating-point number\n")

@@ -18,7 +18,14 @@ from pathlib import Path
 import pytest
 from turtlesim.msg import Pose
 
-from support import RosProcess, TestNode, ros2, turtle_qos
+from support import (
+    RosProcess,
+    TestNode,
+    leased_domain,
+    ros2_side_by_side,
+    ros_environment,
+    turtle_qos,
+)
 
 SPAWNED = r'\[listener\]: Successfully spawned turtle2'
 TURTLE1_START = (5.544444561004639, 5.544444561004639)
@@ -111,18 +118,20 @@ STATIC_ECHO = re.compile(r'''transforms:
 
 
 def test_static_broadcaster_page(launch, ros_env) -> None:
-    usage = ros2(ros_env, 'run', 'turtle_tf2_py', 'static_turtle_tf2_broadcaster',
-                 'mystaticturtle', '0', '0')
+    # Three refused command lines, independent of each other: run side by side.
+    usage, world, bad = ros2_side_by_side(
+        ros_env,
+        ['run', 'turtle_tf2_py', 'static_turtle_tf2_broadcaster', 'mystaticturtle', '0', '0'],
+        ['run', 'turtle_tf2_py', 'static_turtle_tf2_broadcaster', 'world', '0', '0', '1', '0',
+         '0', '0'],
+        ['run', 'turtle_tf2_py', 'static_turtle_tf2_broadcaster', 'mystaticturtle', '0', 'up',
+         '1', '0', '0', 'nan'])
     assert usage.returncode == 1
     assert re.search(r'^\[INFO\] \[[\d.]+\] \[logger\]: Invalid number of parameters\. Usage: \n'
                      r'\$ ros2 run turtle_tf2_py static_turtle_tf2_broadcaster child_frame_name '
                      r'x y z roll pitch yaw$', usage.stderr, re.MULTILINE), usage.stderr
-    world = ros2(ros_env, 'run', 'turtle_tf2_py', 'static_turtle_tf2_broadcaster',
-                 'world', '0', '0', '1', '0', '0', '0')
     assert world.returncode == 2
     assert 'Your static turtle name cannot be "world"' in world.stderr
-    bad = ros2(ros_env, 'run', 'turtle_tf2_py', 'static_turtle_tf2_broadcaster',
-               'mystaticturtle', '0', 'up', '1', '0', '0', 'nan')
     assert bad.returncode == 2
     assert bad.stderr.count('\n') == 1 and "y must be a finite number (metres), got 'up'" \
         in bad.stderr, bad.stderr
@@ -249,20 +258,30 @@ def test_adding_a_dynamic_frame_carrot1_circles_turtle1(launch, probe) -> None:
 
 # -- Using time (C++ page, Python listener variant) ---------------------------------------
 
-def test_using_time_now_fails_without_timeout_and_works_with_one(launch, probe) -> None:
-    demo = ros2_launch(launch, 'turtle_tf2_using_time_demo.launch.py', 'timeout:=0.0')
-    demo.wait_for_output(
-        r'\[INFO\] \[[\d.]+\] \[listener\]: Could not transform turtle2 to turtle1: Lookup would '
-        r'require extrapolation into the future\.  Requested time [\d.]+ but the latest data is '
-        r'at time [\d.]+, when looking up transform from frame \[turtle1\] to frame \[turtle2\]',
-        timeout=40)
-    stop_cleanly(demo)
+def test_using_time_now_fails_without_timeout_and_works_with_one(launch) -> None:
+    # Side by side, the fixed run in a domain of its own: the two overlap their start-up.
+    with leased_domain() as other:
+        fixed_probe = TestNode(other)
+        demo = ros2_launch(launch, 'turtle_tf2_using_time_demo.launch.py', 'timeout:=0.0')
+        fixed = launch(argv=['ros2', 'launch', 'turtle_tf2_py',
+                             'turtle_tf2_using_time_demo.launch.py'],  # waits up to 50 ms
+                       env=ros_environment(other))
+        try:
+            turtles = Turtles(fixed_probe)
+            demo.wait_for_output(
+                r'\[INFO\] \[[\d.]+\] \[listener\]: Could not transform turtle2 to turtle1: '
+                r'Lookup would require extrapolation into the future\.  Requested time [\d.]+ '
+                r'but the latest data is at time [\d.]+, when looking up transform from frame '
+                r'\[turtle1\] to frame \[turtle2\]', timeout=40)
+            stop_cleanly(demo)
 
-    fixed = ros2_launch(launch, 'turtle_tf2_using_time_demo.launch.py')  # waits up to 50 ms
-    turtles = Turtles(probe)
-    fixed.wait_for_output(SPAWNED, timeout=30)
-    turtles.wait_until_near(lambda: turtles.xy('turtle1'), 1.0, 20, 'turtle2 reaching turtle1')
-    stop_cleanly(fixed)
+            fixed.wait_for_output(SPAWNED, timeout=30)
+            turtles.wait_until_near(lambda: turtles.xy('turtle1'), 1.0, 20,
+                                    'turtle2 reaching turtle1')
+            stop_cleanly(fixed)
+        finally:
+            fixed.stop()  # within the lease of its domain
+            fixed_probe.close()
 
 
 # -- Traveling in time (C++ page, Python listener variant) --------------------------------
@@ -303,12 +322,13 @@ def test_tutorial_files_are_installed() -> None:
 
 
 def test_view_frames_without_tf_data_and_with_output_name(ros_env, tmp_path) -> None:
-    done = ros2(ros_env, 'run', 'tf2_tools', 'view_frames', '-t', '0.5', '-o',
-                str(tmp_path / 'empty'), timeout=60)
+    # A run and a refused command line, independent: side by side.
+    done, bad = ros2_side_by_side(
+        ros_env, ['run', 'tf2_tools', 'view_frames', '-t', '0.5', '-o', str(tmp_path / 'empty')],
+        ['run', 'tf2_tools', 'view_frames', '-t', 'soon'], timeout=60)
     assert 'Listening to tf data for 0.5 seconds...' in done.stderr, done.stderr
     assert f'Exporting graph in {tmp_path}/empty.pdf file...' in done.stderr
     assert (tmp_path / 'empty.gv').read_text() == 'digraph G { "No tf data received" }'
-    bad = ros2(ros_env, 'run', 'tf2_tools', 'view_frames', '-t', 'soon')
     assert bad.returncode == 2
     assert "view_frames: error: argument --wait-time/-t: invalid float value: 'soon'" \
         in bad.stderr
