@@ -43,8 +43,8 @@ setup(
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
-        ('share/' + package_name + '/launch/topics', glob('launch/topics/*')),
-        ('share/' + package_name + '/launch/services', glob('launch/services/*')),
+        ('share/' + package_name + '/launch/topics', glob('launch/topics/*_launch.*')),
+        ('share/' + package_name + '/launch/services', glob('launch/services/*_launch.*')),
     ],
     install_requires=['setuptools'],
     zip_safe=True,

@@ -11,7 +11,7 @@ setup(
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
-        ('share/' + package_name + '/launch', glob('launch/*')),
+        ('share/' + package_name + '/launch', glob('launch/*_launch.*') + glob('launch/*.urdf')),
         ('share/' + package_name + '/config', glob('config/*')),
     ],
     install_requires=['setuptools'],
