@@ -1,0 +1,1 @@
+"""Nav2's NavFn global planner in Python."""

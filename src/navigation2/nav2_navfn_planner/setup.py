@@ -1,0 +1,20 @@
+from setuptools import find_packages, setup
+
+package_name = 'nav2_navfn_planner'
+
+setup(
+    name=package_name,
+    version='1.3.13',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+    ],
+    # scikit-fmm (pinned in the workspace's requirements.lock) computes the potential field
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='Turtlesim Team',
+    maintainer_email='team@turtles.example.com',
+    description="Nav2's NavFn global planner in Python: potential field and gradient descent.",
+    license='Apache-2.0',
+)
