@@ -55,7 +55,12 @@ def leased_domain() -> Iterator[int]:
         try:
             yield domain
         finally:
-            handle.close()
+            try:
+                # A `ros2` graph verb run in this domain started a daemon: it goes with the
+                # lease (the next holder of the domain must not find it, nor the leak check).
+                stop_daemon(ros_environment(domain))
+            finally:
+                handle.close()
         return
     raise RuntimeError('no free ROS_DOMAIN_ID left to lease')
 
@@ -207,6 +212,59 @@ class Background:
     def __exit__(self, *exc: object) -> None:
         self._stop.set()
         self._thread.join(timeout=5)
+
+
+# --- processes a test leaves behind (tests/conftest.py) -------------------------------------------
+
+# Every process started while a test (module, session) runs inherits this variable from the test
+# process's environment (ros_environment() copies it too), and so do its descendants, reparented
+# or not: what still carries a scope's value when the scope ends is a leak.
+OWNER_VARIABLE = 'TURTLE_WS_TEST_OWNER'
+# A stopped `ros2 launch` escalates SIGINT -> SIGTERM (5 s) -> SIGKILL (5 s more): a process gets
+# that long to exit after its scope's fixtures stopped it, before it counts as left behind.
+LEFTOVER_GRACE = 11.0
+
+
+def owner_token(scope: str) -> str:
+    """The variable's value for a scope (a test id, a module): this session's pid first."""
+    return f'{os.getpid()} {scope}'
+
+
+def processes_owned(matches: Callable[[str], bool]) -> dict[int, str]:
+    """pid -> command line of the running processes whose OWNER_VARIABLE value `matches`."""
+    prefix = f'{OWNER_VARIABLE}='.encode()
+    found: dict[int, str] = {}
+    for entry in os.scandir('/proc'):
+        if not entry.name.isdigit() or int(entry.name) == os.getpid():
+            continue
+        try:
+            with open(f'/proc/{entry.name}/environ', 'rb') as environ:
+                variables = environ.read().split(b'\0')
+            with open(f'/proc/{entry.name}/cmdline', 'rb') as cmdline:
+                command = cmdline.read().replace(b'\0', b' ').decode(errors='replace').strip()
+        except OSError:  # gone meanwhile, or not ours to read
+            continue
+        owner = next((v[len(prefix):].decode(errors='replace') for v in variables
+                      if v.startswith(prefix)), None)
+        if owner is not None and command and matches(owner):  # a zombie has no command line
+            found[int(entry.name)] = command
+    return found
+
+
+def stop_leftovers(matches: Callable[[str], bool], grace: float = LEFTOVER_GRACE) -> list[str]:
+    """Wait up to `grace` s for the matching processes to exit; SIGKILL those still running and
+    return them as 'pid N: command line' (empty when nothing was left)."""
+    deadline = time.monotonic() + grace
+    left = processes_owned(matches)
+    while left and time.monotonic() < deadline:
+        time.sleep(0.05)
+        left = processes_owned(matches)
+    for pid in left:
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+    return [f'pid {pid}: {command}' for pid, command in sorted(left.items())]
 
 
 # --- turtle_controller tests ------------------------------------------------------------------

@@ -5,10 +5,19 @@ to be. When that is inside rclpy's C++ code (taking a message, say), pybind11 tu
 `RuntimeError: Unable to convert call argument ...` and the node dies with a traceback and
 exit code 1 (seen about once in eight stops of the demo). Here the signal only sets a flag,
 and the spin loop notices it within SIGNAL_CHECK_PERIOD.
+
+Once stopping, the process ends within SHUTDOWN_BUDGET whatever its threads are doing. A
+Python signal handler runs only when the main thread is between two bytecodes: a main thread
+held inside rclpy's C++ code (destroying a node, shutting down the context) never runs one, and
+such a node once outlived its launch, deaf to SIGINT and SIGTERM. faulthandler acts below
+Python (its watchdog thread and signal handler need no GIL): from the first stop request on, a
+SIGTERM ends the process at once and the budget ends it after SHUTDOWN_BUDGET seconds, both
+printing where each thread was, so that the hang can be found.
 """
 
 from __future__ import annotations
 
+import faulthandler
 import signal
 import threading
 from collections.abc import Iterator
@@ -22,6 +31,36 @@ from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
 
 SIGNAL_CHECK_PERIOD = 0.1  # seconds: the longest a stop request waits to be noticed
+# Seconds from the first Ctrl-C or SIGTERM to the end of the process. Below launch's
+# sigterm_timeout (5 s), so that launch never has to escalate: a clean stop takes 0.1-1 s.
+SHUTDOWN_BUDGET = 4.0
+# A node's executor gets this long to let running callbacks finish (within the budget).
+EXECUTOR_SHUTDOWN_TIMEOUT = 1.0
+
+
+def limit_shutdown(budget: float = SHUTDOWN_BUDGET) -> None:
+    """From now on, end the process within `budget` seconds, and at once on SIGTERM.
+
+    Call it from the main thread when the process starts stopping (ros_session's signal
+    handler does); calling it again restarts the budget.
+    """
+    # exit=True: _exit(1) after printing every thread's stack (stderr, which launch logs).
+    faulthandler.dump_traceback_later(budget, exit=True)
+    # SIGTERM's default action (the kernel ends the process) with faulthandler's stack dump
+    # in front of it: neither waits for the main thread to reach Python.
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    faulthandler.register(signal.SIGTERM, chain=True)
+
+
+def stop_on_signals(stop: threading.Event) -> None:
+    """SIGINT and SIGTERM set `stop`; the first also starts the shutdown budget."""
+    def on_signal(_signum: int, _frame: object) -> None:
+        if not stop.is_set():
+            stop.set()
+            limit_shutdown()
+
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, on_signal)
 
 
 @contextmanager
@@ -35,8 +74,7 @@ def ros_session(args: list[str] | None = None) -> Iterator[threading.Event]:
         # Bad --ros-args (an unknown log level, a malformed remap): rcl's reason in one line,
         # without its source locations, instead of a traceback; exit code 1.
         raise SystemExit(str(error).split(', at /')[0]) from None
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda _signum, _frame: stop.set())
+    stop_on_signals(stop)
     try:
         yield stop
     except ExternalShutdownException:
@@ -54,5 +92,5 @@ def spin_until_stopped(node: Node, stop: threading.Event,
         while not stop.is_set() and rclpy.ok():
             executor.spin_once(timeout_sec=SIGNAL_CHECK_PERIOD)
     finally:
-        executor.shutdown(timeout_sec=1.0)
+        executor.shutdown(timeout_sec=EXECUTOR_SHUTDOWN_TIMEOUT)
         node.destroy_node()

@@ -16,18 +16,15 @@ line naming the element and waits for a valid `robot_description` (set with `ros
 
 from __future__ import annotations
 
-import signal
 import sys
-import threading
 
 import rclpy
 from geometry_msgs.msg import TransformStamped
+from node_runtime.spinning import ros_session, spin_until_stopped
 from rcl_interfaces.msg import SetParametersResult
-from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy, QoSProfile, qos_profile_sensor_data
-from rclpy.signals import SignalHandlerOptions
 from rclpy.time import Time
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
@@ -194,26 +191,9 @@ class RobotStatePublisher(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    stop = threading.Event()
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
-    # Ctrl-C only sets a flag: a KeyboardInterrupt raised inside rclpy's C++ code would
-    # end the node with a traceback instead of exit 0.
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda _signum, _frame: stop.set())
-    executor = SingleThreadedExecutor()
-    node = None
-    try:
+    with ros_session(args) as stop:
         node = RobotStatePublisher(rclpy.utilities.remove_ros_args(args or sys.argv))
-        executor.add_node(node)
-        while not stop.is_set() and rclpy.ok():
-            executor.spin_once(timeout_sec=0.1)
-    except ExternalShutdownException:
-        pass
-    finally:
-        executor.shutdown(timeout_sec=1.0)
-        if node is not None:
-            node.destroy_node()
-        rclpy.try_shutdown()
+        spin_until_stopped(node, stop)
 
 
 if __name__ == '__main__':

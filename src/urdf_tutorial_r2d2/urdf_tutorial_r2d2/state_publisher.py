@@ -4,16 +4,12 @@ the odom -> axis transform on /tf, 30 times a second."""
 
 from __future__ import annotations
 
-import signal
-import threading
 from math import cos, pi, sin
 
-import rclpy
 from geometry_msgs.msg import Quaternion, TransformStamped
-from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.node import Node
 from rclpy.qos import QoSProfile
-from rclpy.signals import SignalHandlerOptions
 from sensor_msgs.msg import JointState
 from tf2_ros import TransformBroadcaster
 
@@ -68,22 +64,8 @@ class StatePublisher(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    stop = threading.Event()
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda _signum, _frame: stop.set())
-    executor = SingleThreadedExecutor()
-    node = StatePublisher()
-    executor.add_node(node)
-    try:
-        while not stop.is_set() and rclpy.ok():
-            executor.spin_once(timeout_sec=0.1)
-    except ExternalShutdownException:
-        pass
-    finally:
-        executor.shutdown(timeout_sec=1.0)
-        node.destroy_node()
-        rclpy.try_shutdown()
+    with ros_session(args) as stop:
+        spin_until_stopped(StatePublisher(), stop)
 
 
 if __name__ == '__main__':
