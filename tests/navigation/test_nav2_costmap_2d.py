@@ -18,6 +18,7 @@ from nav2_costmap_2d.cost_values import (
     NO_INFORMATION,
 )
 from nav2_costmap_2d.costmap_2d import Costmap2D, costs_to_occupancy
+from nav2_costmap_2d.costmap_config import build_costmap
 from nav2_costmap_2d.costmap_layer import ParameterError
 from nav2_costmap_2d.footprint import (
     FootprintError,
@@ -266,3 +267,58 @@ def test_clear_services_reset_obstacles_only():
     assert (layer.costmap == NO_INFORMATION).all()
     layered.update_map(1.5, 1.5, 0.0)
     assert layered.costmap.costmap[5, 5] == LETHAL_OBSTACLE  # the static map stays
+
+
+LOCAL_COSTMAP = {  # the shape of nav2_bringup's local_costmap ros__parameters
+    'update_frequency': 5.0, 'publish_frequency': 2.0, 'global_frame': 'odom',
+    'robot_base_frame': 'base_link', 'rolling_window': True, 'width': 3, 'height': 3,
+    'resolution': 0.05, 'robot_radius': 0.22, 'plugins': ['voxel_layer', 'inflation_layer'],
+    'inflation_layer': {'plugin': 'nav2_costmap_2d::InflationLayer',
+                        'cost_scaling_factor': 3.0, 'inflation_radius': 0.55},
+    'voxel_layer': {'plugin': 'nav2_costmap_2d::VoxelLayer', 'enabled': True,
+                    'publish_voxel_map': True, 'origin_z': 0.0, 'z_resolution': 0.05,
+                    'z_voxels': 16, 'max_obstacle_height': 2.0, 'mark_threshold': 0,
+                    'observation_sources': 'scan',
+                    'scan': {'topic': '/scan', 'max_obstacle_height': 2.0, 'clearing': True,
+                             'marking': True, 'data_type': 'LaserScan',
+                             'raytrace_max_range': 3.0, 'raytrace_min_range': 0.0,
+                             'obstacle_max_range': 2.5, 'obstacle_min_range': 0.0}},
+    'always_send_full_costmap': True,
+}
+
+
+def test_a_nav2_params_file_builds_its_costmap_unchanged():
+    config = build_costmap(LOCAL_COSTMAP, 'local_costmap')
+    layered = config.layered
+    assert (layered.costmap.size_x, layered.costmap.size_y) == (60, 60)
+    assert layered.is_rolling() and layered.global_frame == 'odom'
+    assert [type(layer).__name__ for layer in layered.plugins] == ['ObstacleLayer',
+                                                                   'InflationLayer']
+    assert config.layer('voxel_layer').sources['scan'].clearing is True
+    assert layered.inscribed_radius == pytest.approx(0.22 * math.cos(math.pi / 16), abs=0.011)
+    assert config.messages == []
+    # a scan seen by the voxel layer ends up inflated in the master grid
+    voxel = config.layer('voxel_layer')
+    voxel.add_scan('scan', [1.0], 0.0, 0.1, 0.1, 10.0, (0.0, 0.0, 0.0))
+    layered.update_map(0.0, 0.0, 0.0)
+    cell = layered.costmap.world_to_map(1.0, 0.0)
+    assert layered.costmap.costmap[cell[1], cell[0]] == LETHAL_OBSTACLE
+    assert layered.costmap.costmap[cell[1], cell[0] - 3] == INSCRIBED_INFLATED_OBSTACLE
+
+
+def test_defaults_flattened_names_and_refusals():
+    config = build_costmap({})
+    assert list(config.plugin_types) == ['static_layer', 'obstacle_layer', 'inflation_layer']
+    assert config.layered.costmap.size_x == 50  # 5 m at 0.1 m
+    flat = build_costmap({'plugins': ['obstacle_layer'], 'obstacle_layer.observation_sources':
+                          'scan', 'obstacle_layer.scan.obstacle_max_range': 4.0,
+                          'footprint': '[[1, 2]]'})
+    assert flat.layer('obstacle_layer').sources['scan'].obstacle_max_range == 4.0
+    assert flat.used_radius and flat.messages[-1] == (
+        'The footprint parameter is invalid: "[[1, 2]]", using radius (0.100000) instead')
+    with pytest.raises(ParameterError, match=r'^costmap\.width: expected int, got 3\.5$'):
+        build_costmap({'width': 3.5})
+    with pytest.raises(ParameterError, match='Failed to create plugin keepout of type '
+                       'nav2_costmap_2d::KeepoutFilter'):
+        build_costmap({'plugins': ['keepout'],
+                       'keepout': {'plugin': 'nav2_costmap_2d::KeepoutFilter'}})
