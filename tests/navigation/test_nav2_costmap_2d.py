@@ -322,3 +322,22 @@ def test_defaults_flattened_names_and_refusals():
                        'nav2_costmap_2d::KeepoutFilter'):
         build_costmap({'plugins': ['keepout'],
                        'keepout': {'plugin': 'nav2_costmap_2d::KeepoutFilter'}})
+
+
+def test_messages_round_trip_as_the_publisher_and_static_layer():
+    from nav2_costmap_2d.messages import occupancy_grid, take_map
+    from nav_msgs.msg import OccupancyGrid
+    layered = _layered()
+    static = StaticLayer('static_layer', layered, {}, {'track_unknown_space': True})
+    layered.add_plugin(static)
+    incoming = OccupancyGrid()
+    incoming.info.width, incoming.info.height, incoming.info.resolution = 4, 3, 0.5
+    incoming.info.origin.position.x = -1.0
+    incoming.data = [0, 100, -1, 0] * 3
+    take_map(static, incoming)
+    layered.update_map(0.0, 0.5, 0.0)
+    assert layered.costmap.costmap[0].tolist() == [0, LETHAL_OBSTACLE, NO_INFORMATION, 0]
+    out = occupancy_grid(layered.costmap, 'map', map_vis_z=0.1)
+    assert (out.info.width, out.info.height, out.info.resolution) == (4, 3, 0.5)
+    assert (out.info.origin.position.x, out.info.origin.position.z) == (-1.0, 0.1)
+    assert list(out.data) == [0, 100, -1, 0] * 3 and out.header.frame_id == 'map'

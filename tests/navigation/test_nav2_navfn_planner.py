@@ -167,3 +167,17 @@ def test_parameters_are_checked_in_one_line():
     with pytest.raises(ValueError, match=r'^GridBased\.allow_unknown: expected bool, got 1$'):
         NavfnPlanner('GridBased', {'allow_unknown': 1})
     assert NavfnPlanner('GridBased', {'tolerance': 1}).tolerance == 1.0
+
+
+def test_plans_become_nav_msgs_paths():
+    from geometry_msgs.msg import PoseStamped
+    from nav2_navfn_planner.messages import path_msg, pose_from_msg
+    goal = PoseStamped()
+    goal.pose.position.x, goal.pose.position.y = 3.0, 1.0
+    goal.pose.orientation.z, goal.pose.orientation.w = math.sin(0.5), math.cos(0.5)
+    assert pose_from_msg(goal) == pytest.approx((3.0, 1.0, 1.0))
+    plan = NavfnPlanner().create_plan(_costmap(), (1.0, 1.0, 0.0), pose_from_msg(goal))
+    path = path_msg(plan, 'map')
+    assert path.header.frame_id == 'map' and len(path.poses) == len(plan)
+    assert path.poses[0].pose.orientation.w == 1.0  # NavFn's poses carry no heading...
+    assert pose_from_msg(path.poses[-1]) == pytest.approx((3.0, 1.0, 1.0))  # ...but the goal's
