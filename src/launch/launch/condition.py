@@ -19,4 +19,4 @@ class Condition:
         return bool(self._predicate(context)) if self._predicate is not None else False
 
     def describe(self) -> str:
-        return f'{type(self).__name__}()'
+        return repr(self)  # upstream's: the object's default repr

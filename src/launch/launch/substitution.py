@@ -15,5 +15,5 @@ class Substitution:
         raise NotImplementedError()
 
     def describe(self) -> str:
-        return f'{type(self).__name__}()'
+        return repr(self)  # upstream's default; subclasses say more
 

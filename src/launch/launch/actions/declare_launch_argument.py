@@ -83,9 +83,6 @@ class DeclareLaunchArgument(Action):
     def choices(self) -> list[str] | None:
         return self.__choices
 
-    def describe(self) -> str:
-        return f"DeclareLaunchArgument('{self.__name}')"
-
     def execute(self, context: LaunchContext) -> None:
         if self.name not in context.launch_configurations:
             if self.default_value is None:

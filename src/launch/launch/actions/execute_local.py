@@ -140,9 +140,6 @@ class ExecuteLocal(Action):
     def get_sub_entities(self) -> list[LaunchDescriptionEntity]:
         return self.__on_exit if isinstance(self.__on_exit, list) else []
 
-    def describe(self) -> str:
-        return f'{type(self).__name__}(cmd={self.__process_description.cmd})'
-
     def get_asyncio_future(self) -> asyncio.Future | None:
         return self.__completed_future
 

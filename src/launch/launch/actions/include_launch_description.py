@@ -59,9 +59,6 @@ class IncludeLaunchDescription(Action):
     def launch_arguments(self) -> Sequence[tuple[Any, Any]]:
         return self.__launch_arguments
 
-    def describe(self) -> str:
-        return f'IncludeLaunchDescription({self.__source.location})'
-
     def _get_launch_file(self) -> str:
         return os.path.abspath(self.__source.location)
 

@@ -20,7 +20,8 @@ class OnProcessIO(OnActionEventBase):
                  **kwargs: Any) -> None:
         from launch.actions.execute_local import ExecuteLocal
 
-        def dispatch(event: ProcessIO, context: LaunchContext) -> Any:
+        # Named `handle`, as upstream's: --print shows the function's name.
+        def handle(event: ProcessIO, context: LaunchContext) -> Any:
             for wanted, callback in ((event.from_stdout, on_stdout),
                                      (event.from_stderr, on_stderr),
                                      (event.from_stdin, on_stdin)):
@@ -28,5 +29,5 @@ class OnProcessIO(OnActionEventBase):
                     return callback(event)
             return None
 
-        super().__init__(action_matcher=target_action, on_event=dispatch,
+        super().__init__(action_matcher=target_action, on_event=handle,
                          target_event_cls=ProcessIO, target_action_cls=ExecuteLocal, **kwargs)

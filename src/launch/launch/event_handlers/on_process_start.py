@@ -10,7 +10,8 @@ from launch.events.process.process_started import ProcessStarted
 
 class OnProcessStart(OnActionEventBase):
     def __init__(self, *, target_action: Any = None, on_start: Any, **kwargs: Any) -> None:
-        from launch.actions.execute_local import ExecuteLocal
+        # ExecuteProcess, as upstream (its matcher reads '... and ExecuteProcess(event.action)').
+        from launch.actions.execute_process import ExecuteProcess
         super().__init__(action_matcher=target_action, on_event=on_start,
-                         target_event_cls=ProcessStarted, target_action_cls=ExecuteLocal,
+                         target_event_cls=ProcessStarted, target_action_cls=ExecuteProcess,
                          **kwargs)

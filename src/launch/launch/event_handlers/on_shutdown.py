@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from launch.event import Event
@@ -14,13 +15,20 @@ if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
 
+def gen_handler(entities: Any) -> Callable[[Event, LaunchContext], Any]:
+    """A callback returning `entities`; its name is what --print shows as the handler."""
+    def handler(event: Event, context: LaunchContext) -> Any:
+        return entities
+    return handler
+
+
 class OnShutdown(BaseEventHandler):
     def __init__(self, *, on_shutdown: Any, **kwargs: Any) -> None:
         super().__init__(matcher=lambda event: is_a_subclass(event, Shutdown), **kwargs)
         if callable(on_shutdown) and not isinstance(on_shutdown, LaunchDescriptionEntity):
             self.__on_shutdown = on_shutdown
         else:
-            self.__on_shutdown = lambda event, context: on_shutdown
+            self.__on_shutdown = gen_handler(on_shutdown)
 
     def handle(self, event: Event, context: LaunchContext) -> Any:
         super().handle(event, context)

@@ -84,6 +84,11 @@ class OrSubstitution(_BinarySubstitution):
     def _combine(left: bool, right: bool) -> bool:
         return left or right
 
+    def describe(self) -> str:
+        # Upstream Jazzy's OrSubstitution describes itself as AndSubstitution (a slip there);
+        # `ros2 launch --print` shows that text, so this one does too.
+        return f'AndSubstitution({self.left} {self.right})'
+
 
 class _ManySubstitution(Substitution):
     _reduce: Callable[[Iterable[bool]], bool]

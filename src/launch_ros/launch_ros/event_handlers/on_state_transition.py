@@ -32,3 +32,16 @@ class OnStateTransition(EventHandler):
                     and all(value is None or getattr(event, key) == value
                             for key, value in wanted.items()))
         super().__init__(matcher=matcher or matches, entities=entities, **kwargs)
+        self.__target = target_lifecycle_node
+
+    @property
+    def handler_description(self) -> str:
+        return '<actions>'
+
+    @property
+    def matcher_description(self) -> str:
+        # Upstream's text, which names the node action by its id (and nothing else it matches).
+        if self.__target is None:
+            return 'event == StateTransition'
+        return ('event == StateTransition and event.action == '
+                f'LifecycleNode({hex(id(self.__target))})')

@@ -20,35 +20,45 @@ def _one_argument(name: str, data: list[list[Substitution]]) -> list[Substitutio
     return data[0]
 
 
-@expose_substitution('find-pkg-prefix')
-class FindPackagePrefix(Substitution):
-    """The install prefix of a package."""
+class FindPackage(Substitution):
+    """Something found for a package (subclasses say what, in find()); upstream's base."""
+
+    _tag = 'find-pkg'
 
     @classmethod
     def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
-        return cls, {'package': _one_argument('find-pkg-prefix', data)}
+        return cls, {'package': _one_argument(cls._tag, data)}
 
     def __init__(self, package: SomeSubstitutionsType) -> None:
         self.package = normalize_to_list_of_substitutions(package)
 
     def find(self, package: str) -> str:
-        from ament_index_python.packages import get_package_prefix
-        return get_package_prefix(package)
+        raise NotImplementedError()
 
     def perform(self, context: LaunchContext) -> str:
         return self.find(perform_substitutions(context, self.package))
 
     def describe(self) -> str:
-        return f'Pkg(pkg={format_substitutions(self.package)})'
+        # `ros2 launch --print` shows the class: FindPackageShare(pkg='turtlesim').
+        return f'{type(self).__name__}(pkg={format_substitutions(self.package)})'
+
+
+@expose_substitution('find-pkg-prefix')
+class FindPackagePrefix(FindPackage):
+    """The install prefix of a package."""
+
+    _tag = 'find-pkg-prefix'
+
+    def find(self, package: str) -> str:
+        from ament_index_python.packages import get_package_prefix
+        return get_package_prefix(package)
 
 
 @expose_substitution('find-pkg-share')
-class FindPackageShare(FindPackagePrefix):
+class FindPackageShare(FindPackage):
     """The share directory of a package."""
 
-    @classmethod
-    def parse(cls, data: list[list[Substitution]]) -> tuple[type, dict[str, Any]]:
-        return cls, {'package': _one_argument('find-pkg-share', data)}
+    _tag = 'find-pkg-share'
 
     def find(self, package: str) -> str:
         from ament_index_python.packages import get_package_share_directory
