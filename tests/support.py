@@ -230,9 +230,10 @@ def owner_token(scope: str) -> str:
     return f'{os.getpid()} {scope}'
 
 
-def processes_owned(matches: Callable[[str], bool]) -> dict[int, str]:
-    """pid -> command line of the running processes whose OWNER_VARIABLE value `matches`."""
-    prefix = f'{OWNER_VARIABLE}='.encode()
+def processes_owned(matches: Callable[[str], bool], variable: str = OWNER_VARIABLE
+                    ) -> dict[int, str]:
+    """pid -> command line of the running processes whose `variable` value `matches`."""
+    prefix = f'{variable}='.encode()
     found: dict[int, str] = {}
     for entry in os.scandir('/proc'):
         if not entry.name.isdigit() or int(entry.name) == os.getpid():

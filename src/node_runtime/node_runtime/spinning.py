@@ -9,10 +9,10 @@ and the spin loop notices it within SIGNAL_CHECK_PERIOD.
 Once stopping, the process ends within SHUTDOWN_BUDGET whatever its threads are doing. A
 Python signal handler runs only when the main thread is between two bytecodes: a main thread
 held inside rclpy's C++ code (destroying a node, shutting down the context) never runs one, and
-such a node once outlived its launch, deaf to SIGINT and SIGTERM. faulthandler acts below
-Python (its watchdog thread and signal handler need no GIL): from the first stop request on, a
-SIGTERM ends the process at once and the budget ends it after SHUTDOWN_BUDGET seconds, both
-printing where each thread was, so that the hang can be found.
+such a node once outlived its launch, deaf to SIGINT and SIGTERM. faulthandler's watchdog is a
+thread below Python (it needs no GIL): from the first stop request on, it ends the process
+after SHUTDOWN_BUDGET seconds, printing where each thread was, so that the hang can be found.
+A SIGTERM while stopping ends the process at once when Python gets to run its handler.
 """
 
 from __future__ import annotations
@@ -39,25 +39,22 @@ EXECUTOR_SHUTDOWN_TIMEOUT = 1.0
 
 
 def limit_shutdown(budget: float = SHUTDOWN_BUDGET) -> None:
-    """From now on, end the process within `budget` seconds, and at once on SIGTERM.
-
-    Call it from the main thread when the process starts stopping (ros_session's signal
-    handler does); calling it again restarts the budget.
-    """
-    # exit=True: _exit(1) after printing every thread's stack (stderr, which launch logs).
+    """From now on, end the process within `budget` seconds (calling it again restarts it)."""
+    # exit=True: _exit(1) after printing every thread's stack on stderr (which launch logs).
     faulthandler.dump_traceback_later(budget, exit=True)
-    # SIGTERM's default action (the kernel ends the process) with faulthandler's stack dump
-    # in front of it: neither waits for the main thread to reach Python.
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    faulthandler.register(signal.SIGTERM, chain=True)
 
 
 def stop_on_signals(stop: threading.Event) -> None:
-    """SIGINT and SIGTERM set `stop`; the first also starts the shutdown budget."""
-    def on_signal(_signum: int, _frame: object) -> None:
+    """SIGINT and SIGTERM set `stop` and start the shutdown budget; a SIGTERM while stopping
+    ends the process at once (a second SIGINT does nothing, as in rclcpp)."""
+    def on_signal(signum: int, _frame: object) -> None:
         if not stop.is_set():
             stop.set()
             limit_shutdown()
+        elif signum == signal.SIGTERM:
+            faulthandler.dump_traceback(all_threads=True)  # where the shutdown was
+            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+            signal.raise_signal(signal.SIGTERM)
 
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, on_signal)

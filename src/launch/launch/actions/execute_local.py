@@ -364,9 +364,12 @@ class ExecuteLocal(Action):
 
     async def _escalate(self) -> None:
         name = self.__process_event_args['name']
+        # As upstream's timers: SIGKILL comes sigterm_timeout + sigkill_timeout after the
+        # SIGINT, and its line names that sum ('10.0' by default).
+        since_sigint = str(self._sigterm_after + self._sigkill_after)
         for after, text, previous, sig in (
                 (self._sigterm_after, self._sigterm_text, 'SIGINT', signal.SIGTERM),
-                (self._sigkill_after, self._sigkill_text, 'SIGTERM', signal.SIGKILL)):
+                (self._sigkill_after, since_sigint, 'SIGTERM', signal.SIGKILL)):
             try:
                 await asyncio.wait_for(self._exited.wait(), timeout=after)
                 return
