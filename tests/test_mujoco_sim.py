@@ -174,12 +174,14 @@ def test_one_metre_at_0_2_m_per_s(sim: Sim) -> None:
     assert truth.pose.pose.position.x == pytest.approx(1.0, abs=0.05)
     assert abs(odom.pose.pose.position.y) < 0.01 and abs(truth.pose.pose.position.y) < 0.01
     assert abs(odom.twist.twist.linear.x) < 0.01  # stopped
-    # The same pose as odom -> base_link on /tf, stamped like the odometry.
+    # The same pose as odom -> base_footprint on /tf (the URDF's root: robot_state_publisher
+    # adds base_footprint -> base_link), stamped like the odometry.
+    assert (odom.child_frame_id, truth.child_frame_id) == ('base_footprint', 'base_footprint')
     def transforms() -> list:
         return [t for m in sim.tf for t in m.transforms
-                if (t.header.frame_id, t.child_frame_id) == ('odom', 'base_link')
+                if (t.header.frame_id, t.child_frame_id) == ('odom', 'base_footprint')
                 and t.header.stamp == odom.header.stamp]
-    sim.probe.spin_until(transforms, 5, "odom -> base_link on /tf at the odometry's stamp")
+    sim.probe.spin_until(transforms, 5, "odom -> base_footprint on /tf at the odometry's stamp")
     assert transforms()[0].transform.translation.x == odom.pose.pose.position.x
     # Standing still: the IMU reads gravity upwards; the wheels turned 1 m / 0.035 m.
     imu = sim.latest(sim.imu, settling)
@@ -188,6 +190,32 @@ def test_one_metre_at_0_2_m_per_s(sim: Sim) -> None:
     joints = sim.latest(sim.joints, settling)
     assert list(joints.name) == ['left_wheel_joint', 'right_wheel_joint']
     assert joints.position[0] == pytest.approx(1.0 / 0.035, rel=0.05)
+
+
+def _yaw(pose) -> float:
+    q = pose.orientation
+    return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+
+
+@pytest.mark.parametrize('angular', [0.3, -0.3])
+def test_odometry_turns_as_the_robot_does_when_circling(sim: Sim, angular: float) -> None:
+    # Circling at 0.2 m/s and 0.3 rad/s, /odom turned 2.8 % more than the robot (the wheels
+    # touched the ground at both edges of their treads, scrubbed, and spun at the start).
+    # Its heading may now err by at most 0.5 % of the angle turned, either way round.
+    sim.start_paused()
+    sim.drive(0.2, angular, 10.0)  # 3 rad: no wrap-around in either yaw
+    done = sim.now()
+    sim.drive(0.0, 0.0, 0.5)
+    odom, truth = sim.latest(sim.odom, done), sim.latest(sim.truth, done)
+    turned = _yaw(truth.pose.pose)
+    assert abs(turned) == pytest.approx(3.0, abs=0.3) and turned * angular > 0
+    error = _yaw(odom.pose.pose) - turned
+    assert abs(error) <= 0.005 * abs(turned), \
+        f'odom turned {math.degrees(error):+.2f} deg more than the robot\'s {turned:.3f} rad'
+    # The circle's radius is 0.67 m: the position agrees too (the start is the same point).
+    gap = math.hypot(odom.pose.pose.position.x - truth.pose.pose.position.x,
+                     odom.pose.pose.position.y - truth.pose.pose.position.y)
+    assert gap < 0.02, gap
 
 
 def test_scan_reads_a_wall_two_metres_ahead(sim: Sim) -> None:
