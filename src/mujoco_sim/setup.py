@@ -12,6 +12,8 @@ setup(
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
         ('share/' + package_name + '/worlds', glob('worlds/*')),
+        # Maps made from the worlds by world_to_map, for map_server (warehouse.yaml/.pgm).
+        ('share/' + package_name + '/maps', glob('maps/*')),
     ],
     install_requires=['setuptools'],
     zip_safe=True,
@@ -22,6 +24,7 @@ setup(
     entry_points={
         'console_scripts': [
             'mujoco_sim = mujoco_sim.simulator:main',
+            'world_to_map = mujoco_sim.world_to_map:main',
         ],
     },
 )

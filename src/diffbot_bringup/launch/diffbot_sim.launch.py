@@ -1,7 +1,8 @@
 """`ros2 launch diffbot_bringup diffbot_sim.launch.py [world:=room.xml] [rviz:=true|false]
-[real_time_factor:=1.0]`: the MuJoCo world with the diffbot in it, robot_state_publisher on
-sim time (the same URDF), and the RViz page with diffbot.rviz (robot, TF, scan, odometry and
-the camera image). `world` is a file of mujoco_sim's worlds/ folder or an absolute path."""
+[real_time_factor:=1.0] [x:=0.0] [y:=0.0] [yaw:=0.0]`: the MuJoCo world with the diffbot in
+it at (x, y, yaw), robot_state_publisher on sim time (the same URDF), and the RViz page with
+diffbot.rviz (robot, TF, scan, odometry and the camera image). `world` is a file of
+mujoco_sim's worlds/ folder (room.xml, empty.xml, warehouse.xml) or an absolute path."""
 
 from pathlib import Path
 
@@ -29,9 +30,15 @@ def generate_launch_description() -> LaunchDescription:
                               description='Open the RViz page'),
         DeclareLaunchArgument('real_time_factor', default_value='1.0',
                               description='Sim seconds per wall second (0: as fast as possible)'),
+        DeclareLaunchArgument('x', default_value='0.0', description='Start x in the world, m'),
+        DeclareLaunchArgument('y', default_value='0.0', description='Start y in the world, m'),
+        DeclareLaunchArgument('yaw', default_value='0.0',
+                              description='Start heading in the world, rad'),
         Node(package='mujoco_sim', executable='mujoco_sim', output='screen',
              parameters=[{'robot_description': urdf, 'world': worlds,
-                          'real_time_factor': LaunchConfiguration('real_time_factor')}]),
+                          'real_time_factor': LaunchConfiguration('real_time_factor'),
+                          'x': LaunchConfiguration('x'), 'y': LaunchConfiguration('y'),
+                          'yaw': LaunchConfiguration('yaw')}]),
         Node(package='robot_state_publisher', executable='robot_state_publisher',
              output='screen',
              parameters=[{'robot_description': urdf, 'use_sim_time': True}]),

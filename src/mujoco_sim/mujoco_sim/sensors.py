@@ -50,7 +50,12 @@ class Lidar:
         directions = (self.local @ rotation.T).ravel()
         mujoco.mj_multiRay(model, data, origin, directions, None, True, self.body,
                            self.geomid, self.dist, None, self.samples, self.range_max)
-        ranges = np.where(self.geomid >= 0, self.dist, np.inf).astype(np.float32)
+        # mj_multiRay's cutoff only prunes geoms by their bounding spheres: a large geom (a
+        # long wall) is still hit beyond it, behind a small one the pruning skipped (a ray
+        # read 15.8 m through a pallet at 14.6 m with range_max 12). Beyond range_max the
+        # scanner sees nothing, as a real one.
+        seen = (self.geomid >= 0) & (self.dist <= self.range_max)
+        ranges = np.where(seen, self.dist, np.inf).astype(np.float32)
         ranges[ranges < self.range_min] = -np.inf  # closer than the scanner can see
         self.msg.header.stamp = stamp
         self.msg.ranges = ranges.tolist()
