@@ -1,7 +1,7 @@
 // A Foxglove WebSocket client for the tests: @foxglove/ws-protocol's FoxgloveClient on `ws`,
 // CDR through @foxglove/rosmsg2-serialization with the schema the server advertised.
-// Usage: node driver.mjs URL SUBPROTOCOL. Reads one JSON command per line on stdin, writes one
-// JSON event per line on stdout (every server event, plus each command's answer).
+// Usage: node driver.mjs URL SUBPROTOCOL[,SUBPROTOCOL...] (a list offers them all, as Lichtblick
+// does). Reads one JSON command per line on stdin, writes one JSON event per line on stdout (every server event, plus each command's answer).
 import { createInterface } from "node:readline";
 
 import { parse as parseMessageDefinition } from "@foxglove/rosmsg";
@@ -11,7 +11,7 @@ import WebSocket from "ws";
 
 const { FoxgloveClient } = wsProtocol;
 const [url, subprotocol] = process.argv.slice(2);
-const ws = new WebSocket(url, [subprotocol]);
+const ws = new WebSocket(url, subprotocol.split(","));  // "a,b": offer both, as Lichtblick
 const client = new FoxgloveClient({ ws });
 const channels = new Map(); // id -> channel
 const services = new Map(); // name -> service

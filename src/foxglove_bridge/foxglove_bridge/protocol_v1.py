@@ -1,6 +1,7 @@
 """`foxglove.websocket.v1`: the Foxglove WebSocket protocol, served on the `websockets` library.
 
-Lichtblick and @foxglove/ws-protocol's client speak this subprotocol; foxglove-sdk 0.30.3's
+Older Lichtblick and @foxglove/ws-protocol's client speak only this subprotocol (Lichtblick
+1.28 offers `foxglove.sdk.v1` beside it and is served that); foxglove-sdk 0.30.3's
 server refuses it (HTTP 400), so the bridge serves it itself. JSON text frames for control,
 binary frames (little-endian, one opcode byte first) for data, as in ws-protocol's spec.
 """

@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import base64
 import threading
+import time
 from collections.abc import Callable, Hashable
+from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 from rcl_interfaces.msg import Parameter, ParameterEvent, ParameterType, ParameterValue
@@ -20,6 +22,7 @@ from rclpy.parameter_client import AsyncParameterClient
 from foxglove_bridge.parameters import allowed
 
 TIMEOUT = 3.0  # seconds per node for a parameter service call
+PARAMETER_SERVICES = {'rcl_interfaces/srv/ListParameters', 'rcl_interfaces/srv/GetParameters'}
 
 
 class ParameterError(Exception):
@@ -109,10 +112,10 @@ def split_name(full: str) -> tuple[str, str]:
     return node, param
 
 
-def _wait(future: Any, what: str) -> Any:
+def _wait(future: Any, what: str, timeout: float = TIMEOUT) -> Any:
     done = threading.Event()
     future.add_done_callback(lambda _f: done.set())
-    if not done.wait(TIMEOUT):
+    if not done.wait(max(0.0, timeout)):
         raise ParameterError(f'{what}: no answer within {TIMEOUT} s')
     if future.exception() is not None:
         raise ParameterError(f'{what}: {future.exception()}')
@@ -128,6 +131,11 @@ class ParameterAccess:
         self._clients: dict[str, AsyncParameterClient] = {}
         self._lock = threading.Lock()
         self._watched: dict[str, set[Hashable]] = {}
+        # Nodes that failed a request for all parameters: not asked again (upstream's
+        # ignore_unresponsive_param_nodes, on by default there).
+        self._ignored: set[str] = set()
+        # One thread per node asked at once, as upstream's std::async per node.
+        self._pool = ThreadPoolExecutor(max_workers=8, thread_name_prefix='parameters')
         node.create_subscription(ParameterEvent, '/parameter_events', self._on_event, 100)
 
     def _client(self, node_name: str) -> AsyncParameterClient:
@@ -157,34 +165,93 @@ class ParameterAccess:
                 names.append(full)
         return names
 
+    def _offers_parameters(self, full: str) -> bool:
+        """Whether the node has list_parameters and get_parameters services (rclpy and rclcpp
+        nodes do; the ros2 daemon's and the rqt web app's node do not, and would never answer).
+        """
+        namespace, _slash, name = full.rpartition('/')
+        try:
+            services = self._node.get_service_names_and_types_by_node(name, namespace or '/')
+        except Exception:  # the node left the graph meanwhile (NodeNameNonExistentError)
+            return False
+        types = {t for _service, kinds in services for t in kinds}
+        return PARAMETER_SERVICES <= types
+
+    def _node_values(self, node: str, params: list[str] | None) -> list[tuple[str, Any]]:
+        """(name, value) of `params` on `node`, or of all its whitelisted ones when None."""
+        deadline = time.monotonic() + TIMEOUT
+        client = self._client(node)
+        while not client.services_are_ready():
+            if time.monotonic() > deadline:
+                raise ParameterError(f"Parameter service for node '{node}' is not ready")
+            time.sleep(0.01)
+        if params is None:
+            try:
+                listed = _wait(client.list_parameters(), f'{node} list',
+                               deadline - time.monotonic())
+            except ParameterError:
+                raise ParameterError(
+                    f"Failed to retrieve parameter names for node '{node}'") from None
+            params = [p for p in listed.result.names
+                      if allowed(self._whitelist, f'{node}.{p}')]
+        if not params:
+            return []
+        try:
+            values = _wait(client.get_parameters(params), f'{node} get',
+                           deadline - time.monotonic())
+        except ParameterError:
+            raise ParameterError(f'Timed out waiting for {len(params)} parameter(s) from '
+                                 f"node '{node}'") from None
+        return list(zip(params, values.values, strict=False))
+
     def get(self, names: list[str]) -> list[dict[str, Any]]:
-        """Values of `names`, or of every whitelisted parameter when `names` is empty."""
-        wanted: dict[str, list[str]] = {}
+        """Values of `names`, or of every whitelisted parameter when `names` is empty.
+
+        Nodes are asked in parallel. For all parameters, only nodes that offer the parameter
+        services are asked, and a node that fails is logged once and never asked again (as
+        upstream); a failure for parameters asked by name is the client's error.
+        """
+        wanted: dict[str, list[str] | None] = {}
         if names:
             present = set(self._nodes())
             for full in names:
                 node, param = split_name(full)
-                if node in present:  # no client (and no 3 s wait) for a node that is not there
+                if node in present and allowed(self._whitelist, full):
+                    # no client (and no 3 s wait) for a node that is not there
                     wanted.setdefault(node, []).append(param)
         else:
             for node in self._nodes():
-                try:
-                    listed = _wait(self._client(node).list_parameters(), f'{node} list')
-                except ParameterError as error:
-                    self._node.get_logger().warn(str(error))  # unresponsive: skipped, as upstream
-                    continue
-                wanted[node] = list(listed.result.names)
-        result = []
-        for node, params in wanted.items():
-            params = [p for p in params if allowed(self._whitelist, f'{node}.{p}')]
-            if not params:
+                if node not in self._ignored and self._offers_parameters(node):
+                    wanted[node] = None
+        futures = {node: self._pool.submit(self._node_values, node, params)
+                   for node, params in wanted.items()}
+        result, failure = [], None
+        for node, future in futures.items():
+            try:
+                values = future.result()
+            except ParameterError as error:
+                if names:
+                    failure = failure or error
+                else:
+                    self._ignore(node, error)
                 continue
-            values = _wait(self._client(node).get_parameters(params), f'{node} get')
-            for param, value in zip(params, values.values, strict=False):
+            for param, value in values:
                 entry = self.entry(f'{node}.{param}', value)
                 if entry:
                     result.append(entry)
+        if failure is not None:
+            raise failure
         return result
+
+    def _ignore(self, node: str, error: ParameterError) -> None:
+        with self._lock:
+            if node in self._ignored:
+                return
+            self._ignored.add(node)
+        logger = self._node.get_logger()
+        logger.error(f"Failed to retrieve parameters from node '{node}': {error}")
+        logger.warn(f'Adding node {node} to the ignore list to prevent repeated timeouts or '
+                    'failures in future parameter requests.')
 
     def set(self, items: list[tuple[str, Any, str | None]]) -> list[dict[str, Any]]:
         """Set (name, value, hint) items; returns the values the nodes now hold."""

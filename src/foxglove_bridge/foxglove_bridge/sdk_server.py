@@ -38,6 +38,7 @@ from foxglove_bridge.ros_bridge import (
     ServiceInfo,
 )
 from foxglove_bridge.ros_parameters import ParameterError
+from foxglove_bridge.sdk_log import route_sdk_logs
 
 CAPABILITIES = {'clientPublish': Capability.ClientPublish, 'parameters': Capability.Parameters,
                 'services': Capability.Services, 'connectionGraph': Capability.ConnectionGraph}
@@ -65,6 +66,7 @@ class SdkServer:
         # Subscribes run here, in order, not on the SDK's thread: the SDK may hold its channel
         # state while calling us, and the ROS thread needs it for channel.log meanwhile.
         self._worker = ThreadPoolExecutor(max_workers=1, thread_name_prefix='sdk_subscribe')
+        route_sdk_logs(ros.get_logger())
         capabilities = [CAPABILITIES[c] for c in ros.settings.capabilities if c in CAPABILITIES]
         if ros.settings.use_sim_time:
             capabilities.append(Capability.Time)

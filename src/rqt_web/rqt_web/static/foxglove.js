@@ -12,7 +12,8 @@
     rqt.el('li', {}, 'Foxglove (app or desktop): Open connection, Foxglove WebSocket, URL ',
       url, '. It speaks foxglove.sdk.v1.'),
     rqt.el('li', {}, 'Lichtblick: Open connection, Foxglove WebSocket, the same URL. ' +
-      'It speaks foxglove.websocket.v1; the bridge serves both on one port.'),
+      'Lichtblick 1.28 offers foxglove.sdk.v1 too and is served that; older versions ' +
+      'speak foxglove.websocket.v1. The bridge serves both on one port.'),
     rqt.el('li', {}, 'From another machine: start the bridge with ',
       rqt.el('code', {text: 'address:=0.0.0.0'}),
       ' (it listens on 127.0.0.1 by default) and use this machine\'s address.'));
