@@ -162,3 +162,43 @@ def test_a_dropped_subscriber_is_one_line_at_most(tmp_path: Path, domain: int, r
         if bridge is not None:
             bridge.stop()
         probe.close()
+
+
+def test_a_node_that_never_answers_is_logged_once_and_not_asked_again(
+        tmp_path: Path, domain: int, ros_env) -> None:
+    """A node with parameter services that does not answer them (here: a node nobody spins)
+    costs the first request its 3 s limit and upstream's two lines, once; later requests skip
+    it. A node that answers is asked every time."""
+    stuck = TestNode(domain, 'stuck')
+    answering = TestNode(domain, 'answering')
+    answering.node.declare_parameter('speed', 2.5)
+    bridge = None
+    driver = None
+    try:
+        with Background(answering):
+            bridge, url = start_bridge(ros_env, tmp_path / 'bridge.log')
+            driver = Driver(url, BOTH)
+            driver.wait(lambda e: e.get('event') == 'open', 'the connection')
+            wait_until(lambda: {'/stuck', '/answering'} <= {
+                f"{ns.rstrip('/')}/{n}"
+                for n, ns in answering.node.get_node_names_and_namespaces()}, 10, 'the nodes')
+            seconds, parameters = all_parameters(driver, 'first')
+            assert 2.5 < seconds < 5.0, seconds  # the stuck node's 3 s limit, not more
+            assert {p['name']: p['value'] for p in parameters}['/answering.speed'] == 2.5
+            bridge.wait_for_output(r'Adding node /stuck to the ignore list', 5)
+            logged = bridge.output
+            assert re.search(r"\[ERROR\] \[[\d.]+\] \[foxglove_bridge\]: Failed to retrieve "
+                             r"parameters from node '/stuck': ", logged), logged
+            seconds, again = all_parameters(driver, 'second')
+            assert seconds < 1.0, seconds
+            assert {p['name'] for p in again} == {p['name'] for p in parameters}
+            assert bridge.output == logged, bridge.output[len(logged):]
+        assert len([line for line in bridge.output.splitlines() if '/stuck' in line]) == 2, (
+            bridge.output)
+    finally:
+        if driver is not None:
+            driver.close()
+        if bridge is not None:
+            bridge.stop()
+        answering.close()
+        stuck.close()
