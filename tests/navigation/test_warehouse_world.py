@@ -235,3 +235,27 @@ def test_the_lidar_sees_the_map_and_the_tf_tree_is_navs(generated: Map, tmp_path
             for process in processes:
                 assert process.stop() == 0, process.output
     assert "Loaded world '" in processes[0].output and 'warehouse.xml' in processes[0].output
+
+
+def test_world_to_map_refuses_bad_input_in_one_line(tmp_path: Path) -> None:
+    cases = {
+        'missing': (['nowhere.xml'], "world 'nowhere.xml' does not exist (a path, or a file of "
+                    "mujoco_sim's worlds/ folder)"),
+        'resolution': (['warehouse.xml', '--resolution', '0'],
+                       'resolution is 0; allowed: 0.005 to 1.0 m'),
+        'start': (['warehouse.xml', '--start', '3.5', '0.25'],
+                  'start (3.5, 0.25) is inside an obstacle; allowed: a free point from which '
+                  'the free space is flooded'),
+    }
+    with leased_domain() as domain:
+        runs = {name: RosProcess([executable('mujoco_sim', 'world_to_map'), *args, '-o',
+                                  str(tmp_path / name)], ros_environment(domain),
+                                 tmp_path / f'{name}.log')
+                for name, (args, _) in cases.items()}
+        codes = {name: run.wait(timeout=60) for name, run in runs.items()}
+        for run in runs.values():
+            run.stop()
+    for name, (_, message) in cases.items():
+        assert codes[name] == 1, runs[name].output
+        assert runs[name].output.splitlines() == [f'world_to_map: error: {message}']
+    assert not list(tmp_path.glob('*.pgm')) and not list(tmp_path.glob('*.yaml'))
