@@ -39,7 +39,8 @@ def cli_node(name: str | None = None, discover: bool = True,
     try:
         if discover and running_for is None:
             bound = 1.8 if spin_time is None else min(1.8, spin_time)
-            context, node, _ = _meet_graph(context, node, node_name, bound=bound)
+            context, node, _ = _meet_graph(context, node, lambda: make_node(node_name),
+                                           bound=bound)
         yield node
     finally:
         # Shut the executor of spin_once down while its context lives: left to the garbage
@@ -59,7 +60,17 @@ def meet_graph(name: str, bound: float) -> tuple[Any, Any, bool]:
     context, node = make_node(name)
     # Never replaced: the others answer a newcomer at their next periodic announcement (every
     # 0.5 s for our nodes), so a fresh participant would only start that wait anew.
-    return _meet_graph(context, node, name, patience=bound, bound=bound)
+    return _meet_graph(context, node, lambda: make_node(name), patience=bound, bound=bound)
+
+
+def meet_graph_made(make: Callable[[], tuple[Any, Any]], bound: float = 1.8
+                    ) -> tuple[Any, Any, bool]:
+    """(a context, its node, whether it met every participant on this host within `bound`
+    seconds): `make()` gives a fresh context and node, called again for a fresh participant
+    when the first is not met quickly (as cli_node's). For a node of another package that
+    must see what is already there before it decides (the recorder's)."""
+    context, node = make()
+    return _meet_graph(context, node, make, bound=bound)
 
 
 def make_node(name: str) -> tuple[Any, Any]:
@@ -82,8 +93,8 @@ def _create_node(name: str, context: Any) -> Any:
         parameter_overrides=[Parameter('start_type_description_service', value=False)])
 
 
-def _meet_graph(context: Any, node: Any, name: str, patience: float = 0.7,
-                bound: float = 1.8) -> tuple[Any, Any, bool]:
+def _meet_graph(context: Any, node: Any, make: Callable[[], tuple[Any, Any]],
+                patience: float = 0.7, bound: float = 1.8) -> tuple[Any, Any, bool]:
     """Wait until every participant on this host is known (see participants.py); replace
     ours when they are not met quickly. Returns (context, node, whether everyone was met).
 
@@ -112,11 +123,23 @@ def _meet_graph(context: Any, node: Any, name: str, patience: float = 0.7,
             return context, node, False
         if now - attempt_start >= patience and bound - (now - start) > patience:
             node.destroy_node()
-            new_context, new_node = make_node(name)
+            new_context, new_node = make()
             rclpy.try_shutdown(context=context)
             context, node = new_context, new_node
             attempt_start = time.monotonic()
         time.sleep(0.01)
+
+
+def settle_graph(node: Any, bound: float) -> bool:
+    """Until `node` has met every participant on this host, knows their nodes' endpoints and
+    the graph has stopped changing (as the daemon before its first answer), for at most
+    `bound` seconds. Returns whether the graph settled."""
+    from ros2cli_lite.participants import everyone_met
+
+    start = time.monotonic()
+    wait_until(lambda: everyone_met(node) is not False, bound)
+    return wait_for_graph(node, settle=0.1, everyone_met=True,
+                          bound=max(0.0, bound - (time.monotonic() - start)))
 
 
 def spin_once(node: Any, timeout: float) -> None:

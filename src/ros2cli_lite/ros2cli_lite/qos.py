@@ -1,6 +1,6 @@
 """QoS on the command line (ros2topic.api's helpers): `--qos-*` options, the profile they
-make, the profile `topic echo` adapts to the publishers, and ros2cli's incompatible-QoS
-warnings.
+make, the profile compatible with a topic's publishers (which `topic echo` follows, see
+adaptive_subscription.py), and ros2cli's incompatible-QoS warnings.
 
 The warnings are rclpy's default event callbacks' lines. A verb run by the daemon logs to the
 daemon's terminal, so there the same line goes to the verb's stderr, which reaches the CLI.
@@ -12,6 +12,7 @@ import argparse
 import copy
 import sys
 import time
+from collections.abc import Callable
 from typing import Any
 
 # rclpy 7.1's short keys (QoSPresetProfiles.short_keys(), ...), written out: the CLI builds
@@ -110,15 +111,12 @@ def configure_profile(profile: Any, *, reliability: str | None = None,
     return profile
 
 
-def subscription_qos(node: Any, args: argparse.Namespace) -> Any:
-    """`topic echo`'s profile: the options' when any policy is given, else the preset made
-    compatible with every publisher now on the topic (ros2topic's choose_qos)."""
+def compatible_profile(profile: Any, infos: list[Any], say: Callable[[str], None]) -> Any:
+    """`profile` with the reliability and durability that connect to every publisher of
+    `infos` (unchanged without publishers); `say` gets ros2cli's notices of a fallback.
+    Returns `profile`."""
     from rclpy.qos import QoSDurabilityPolicy, QoSReliabilityPolicy
 
-    profile = qos_profile_from_args(args)
-    if policies_given(args):
-        return profile
-    infos = node.get_publishers_info_by_topic(args.topic_name)
     if not infos:
         return profile
     reliable = sum(i.qos_profile.reliability == QoSReliabilityPolicy.RELIABLE for i in infos)
@@ -128,17 +126,17 @@ def subscription_qos(node: Any, args: argparse.Namespace) -> Any:
         profile.reliability = QoSReliabilityPolicy.RELIABLE
     else:
         if reliable:
-            print('Some, but not all, publishers are offering QoSReliabilityPolicy.RELIABLE. '
-                  'Falling back to QoSReliabilityPolicy.BEST_EFFORT as it will connect to all '
-                  'publishers')
+            say('Some, but not all, publishers are offering QoSReliabilityPolicy.RELIABLE. '
+                'Falling back to QoSReliabilityPolicy.BEST_EFFORT as it will connect to all '
+                'publishers')
         profile.reliability = QoSReliabilityPolicy.BEST_EFFORT
     if latched == len(infos):
         profile.durability = QoSDurabilityPolicy.TRANSIENT_LOCAL
     else:
         if latched:
-            print('Some, but not all, publishers are offering '
-                  'QoSDurabilityPolicy.TRANSIENT_LOCAL. Falling back to '
-                  'QoSDurabilityPolicy.VOLATILE as it will connect to all publishers')
+            say('Some, but not all, publishers are offering '
+                'QoSDurabilityPolicy.TRANSIENT_LOCAL. Falling back to '
+                'QoSDurabilityPolicy.VOLATILE as it will connect to all publishers')
         profile.durability = QoSDurabilityPolicy.VOLATILE
     return profile
 
@@ -153,12 +151,16 @@ def _warn(node: Any, text: str) -> None:
         print(f'[WARN] [{time.time():.9f}] [{logger.name}]: {text}', file=sys.stderr, flush=True)
 
 
-def subscription_events(node: Any, topic: str) -> Any:
-    """rclpy's default incompatible-QoS warning of a subscription, seen by the CLI."""
+def subscription_events(node: Any, topic: str,
+                        superseded: Callable[[], bool] | None = None) -> Any:
+    """rclpy's default incompatible-QoS warning of a subscription, seen by the CLI; not given
+    when `superseded()` says the subscription is about to be replaced."""
     from rclpy.event_handler import SubscriptionEventCallbacks
     from rclpy.qos import qos_policy_name_from_kind
 
     def incompatible(event: Any) -> None:
+        if superseded is not None and superseded():
+            return
         _warn(node, f"New publisher discovered on topic '{topic}', offering incompatible QoS. "
               'No messages will be received from it. Last incompatible policy: '
               f'{qos_policy_name_from_kind(event.last_policy_kind)}')

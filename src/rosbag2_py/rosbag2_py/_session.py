@@ -15,13 +15,18 @@ from contextlib import contextmanager
 from typing import Any, NoReturn
 
 SIGNAL_CHECK_PERIOD = 0.1
+# A recorder first meets the participants on this host, for at most one whole Fast DDS
+# announcement period (3 s, as the daemon), then waits for their endpoints to arrive.
+MEET_BOUND = 3.3
+SETTLE_BOUND = 1.0
 
 
 @contextmanager
-def ros_node(name: str, stop: threading.Event | None = None, use_sim_time: bool = False
-             ) -> Iterator[tuple[Any, threading.Event]]:
+def ros_node(name: str, stop: threading.Event | None = None, use_sim_time: bool = False,
+             meet: bool = False) -> Iterator[tuple[Any, threading.Event]]:
     """A node in its own context, with SIGINT/SIGTERM setting the yielded stop event;
-    `use_sim_time`: its clock follows /clock (the node's `use_sim_time` parameter)."""
+    `use_sim_time`: its clock follows /clock (the node's `use_sim_time` parameter); `meet`:
+    yielded once it has met the graph already there (bounded, MEET_BOUND + SETTLE_BOUND)."""
     import rclpy
     from rclpy.context import Context
     from rclpy.parameter import Parameter
@@ -33,10 +38,22 @@ def ros_node(name: str, stop: threading.Event | None = None, use_sim_time: bool 
     main = threading.current_thread() is threading.main_thread()
     previous = {s: signal.signal(s, lambda _n, _f: stop.set())
                 for s in (signal.SIGINT, signal.SIGTERM)} if main else {}
-    context = Context()
-    rclpy.init(args=[], context=context, signal_handler_options=SignalHandlerOptions.NO)
     overrides = [Parameter('use_sim_time', Parameter.Type.BOOL, True)] if use_sim_time else []
-    node = rclpy.create_node(name, context=context, parameter_overrides=overrides)
+
+    def make() -> tuple[Any, Any]:
+        context = Context()
+        rclpy.init(args=[], context=context, signal_handler_options=SignalHandlerOptions.NO)
+        return context, rclpy.create_node(name, context=context, parameter_overrides=overrides)
+
+    if meet:
+        # A fresh participant knows nothing yet, and the others sometimes answer it only at
+        # their next announcement, 3 s later: the CLI node's way, a fresh participant when
+        # it is not met at once, then until the endpoints known have stopped changing.
+        from ros2cli_lite.node import meet_graph_made, settle_graph
+        context, node, _ = meet_graph_made(make, MEET_BOUND)
+        settle_graph(node, SETTLE_BOUND)
+    else:
+        context, node = make()
     try:
         yield node, stop
     finally:

@@ -118,9 +118,9 @@ class _Cancellable:
 
     @staticmethod
     def _run(name: str, level: str, stop: threading.Event, body: Any,
-             use_sim_time: bool = False) -> str | None:
+             use_sim_time: bool = False, meet: bool = False) -> str | None:
         try:
-            with ros_node(name, stop, use_sim_time) as (node, _stop):
+            with ros_node(name, stop, use_sim_time, meet) as (node, _stop):
                 _set_level(node, level)
                 return body(node, stop)
         finally:
@@ -166,8 +166,10 @@ class Recorder(_Cancellable):
                 if storage_options.snapshot_mode else None
             return RecorderNode(node, writer, record_options, snapshot).run(stop)
 
+        # The recorder subscribes to what is already there before it says "Recording...",
+        # as rosbag2: its node first meets the graph.
         failure = self._run(record_options.node_prefix + node_name, self.log_level, stop, body,
-                            record_options.use_sim_time)
+                            record_options.use_sim_time, meet=True)
         if failure:
             raise RuntimeError(failure)
 

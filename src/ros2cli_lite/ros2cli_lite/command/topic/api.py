@@ -70,9 +70,9 @@ def lookup_now(node, name: str, spin_time: float | None = None) -> list[str] | N
     return types()
 
 
-def daemon_lookup(name: str, spin_time: float | None = None) -> list[str] | None:
-    """The types of topic `name` in the daemon's graph (started if need be), waiting briefly
-    (`spin_time`, else 0.3 s) for a publisher that has only just started."""
+def daemon_lookup(name: str, spin_time: float | None = None) -> tuple[list[str], int] | None:
+    """(the types, the publisher count) of topic `name` in the daemon's graph (started if need
+    be), waiting briefly (`spin_time`, else 0.3 s) for a publisher that has only just started."""
     from ros2cli_lite.graph import graph_source
 
     def types(graph):
@@ -80,7 +80,8 @@ def daemon_lookup(name: str, spin_time: float | None = None) -> list[str] | None
     with graph_source(True, spin_time) as source:
         graph = source.graph(ready=lambda g: types(g) is not None,
                              bound=0.3 if spin_time is None else spin_time)
-    return types(graph)
+    found = types(graph)
+    return None if found is None else (found, graph.topic_counts(name)[0])
 
 
 def message_filter(expression: str | None):

@@ -108,11 +108,12 @@ def _unknown_type(topic: str) -> str:
 
 
 def main(args: argparse.Namespace) -> int | str:
+    from ros2cli_lite.adaptive_subscription import AdaptiveSubscription
     from ros2cli_lite.api import import_type
     from ros2cli_lite.command.topic.api import apply_sim_time, daemon_lookup
     from ros2cli_lite.daemon.proxy import session
     from ros2cli_lite.node import cli_node, spin_once
-    from ros2cli_lite.qos import policies_given, subscription_events, subscription_qos
+    from ros2cli_lite.qos import policies_given
     fields = None
     if args.field is not None:
         fields = [name for name in args.field.split('.') if name]
@@ -120,17 +121,16 @@ def main(args: argparse.Namespace) -> int | str:
             return f"Invalid field value '{args.field}'"
     printer = _Printer(args, fields)
     type_name = args.message_type
+    publishers = 0  # how many the daemon knows: ours waits (bounded) to know as many
     if type_name is None and session() is None and not args.no_daemon:
         # As ros2cli: the daemon's graph, asked before this process joins the graph itself.
         found = daemon_lookup(args.topic_name, args.spin_time)
         if found is None:
             return _unknown_type(args.topic_name)
-        type_name = found[0]
+        type_name, publishers = found[0][0], found[1]
     # With the type and the QoS given nothing is asked of the graph: subscribe at once.
     discover = type_name is None or not policies_given(args)
     with cli_node(discover=discover, spin_time=args.spin_time) as node:
-        from rclpy.event_handler import UnsupportedEventTypeError
-
         apply_sim_time(node, args)
         if type_name is None:
             found = lookup_now(node, args.topic_name, args.spin_time)
@@ -142,17 +142,11 @@ def main(args: argparse.Namespace) -> int | str:
         except ValueError:
             return ('The passed message type is invalid' if args.message_type else
                     f"The message type '{type_name}' is invalid")
-        events = subscription_events(node, args.topic_name)
-        if not args.no_lost_messages:
-            events.message_lost = _lost
-        qos = subscription_qos(node, args)
-        try:
-            node.create_subscription(msg_type, args.topic_name, printer, qos,
-                                     event_callbacks=events, raw=args.raw)
-        except UnsupportedEventTypeError:  # an RMW without the message-lost event
-            events.message_lost = None
-            node.create_subscription(msg_type, args.topic_name, printer, qos,
-                                     event_callbacks=events, raw=args.raw)
+        if publishers and discover:
+            _wait_for_publishers(node, args.topic_name, publishers, args.spin_time)
+        subscription = AdaptiveSubscription(
+            node, msg_type, args.topic_name, printer, args, raw=args.raw,
+            message_lost=None if args.no_lost_messages else _lost)
         # --timeout ends the echo after that long, quietly, with or without messages.
         deadline = None if args.timeout is None else time.monotonic() + args.timeout
         while not (args.once and printer.count) and printer.error is None:
@@ -160,4 +154,14 @@ def main(args: argparse.Namespace) -> int | str:
                 break
             spin_once(node, 0.1 if deadline is None else
                       max(0.0, min(0.1, deadline - time.monotonic())))
+            subscription.poll()
     return printer.error or 0
+
+
+def _wait_for_publishers(node: Any, topic: str, count: int, spin_time: float | None) -> None:
+    """Until `node` knows `count` publishers of `topic` (their QoS decides the subscription's),
+    for at most `spin_time` (else 2 s): a publisher's endpoints can reach a fresh node well
+    after its participant. One seen later still counts (AdaptiveSubscription re-decides)."""
+    from ros2cli_lite.node import wait_until
+    wait_until(lambda: len(node.get_publishers_info_by_topic(topic)) >= count,
+               2.0 if spin_time is None else spin_time)
