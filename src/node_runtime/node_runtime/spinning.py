@@ -64,6 +64,9 @@ def stop_on_signals(stop: threading.Event) -> None:
 def ros_session(args: list[str] | None = None) -> Iterator[threading.Event]:
     """rclpy.init with our own SIGINT/SIGTERM handlers; yields the event they set."""
     stop = threading.Event()
+    # Before rclpy.init: a KeyboardInterrupt raised inside rclpy's C++ calls can be lost, and
+    # a node Ctrl-C'd while it starts would run on until launch's SIGTERM 5 s later.
+    stop_on_signals(stop)
     announce_often()  # met within 0.5 s by processes that missed its first announcements
     try:
         rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
@@ -71,7 +74,6 @@ def ros_session(args: list[str] | None = None) -> Iterator[threading.Event]:
         # Bad --ros-args (an unknown log level, a malformed remap): rcl's reason in one line,
         # without its source locations, instead of a traceback; exit code 1.
         raise SystemExit(str(error).split(', at /')[0]) from None
-    stop_on_signals(stop)
     try:
         yield stop
     except ExternalShutdownException:
