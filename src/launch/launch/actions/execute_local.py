@@ -16,6 +16,7 @@ import logging
 import os
 import pty
 import signal
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from launch.action import Action
@@ -51,9 +52,13 @@ _SIGTERM_TIMEOUT = LaunchConfiguration('sigterm_timeout', default=5)
 _SIGKILL_TIMEOUT = LaunchConfiguration('sigkill_timeout', default=5)
 
 
-def _die_with_parent() -> None:
-    # Runs in the child between fork and exec.
-    ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
+def _die_with_parent(parent: int) -> Callable[[], None]:
+    """A preexec_fn: the child gets SIGTERM when launch (pid `parent`) dies."""
+    def in_child() -> None:  # runs in the child between fork and exec
+        ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
+        if os.getppid() != parent:  # launch died before that took effect: run nothing
+            os._exit(1)
+    return in_child
 
 
 def signal_group(pgid: int, sig: int) -> bool:
@@ -254,7 +259,7 @@ class ExecuteLocal(Action):
         try:
             kwargs = dict(stdin=asyncio.subprocess.DEVNULL, stdout=out_write, stderr=err_write,
                           cwd=details['cwd'], env=details['env'], start_new_session=True,
-                          preexec_fn=_die_with_parent)
+                          preexec_fn=_die_with_parent(os.getpid()))
             if self.__shell:
                 process = await asyncio.create_subprocess_shell(cmd[0], **kwargs)
             else:
