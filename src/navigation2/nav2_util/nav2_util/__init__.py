@@ -1,0 +1,1 @@
+"""What Nav2's Python servers share (upstream's nav2_util, the parts they use)."""
