@@ -281,3 +281,33 @@ def test_a_script_started_before_nav2_waits_for_it(launch, tmp_path):
     output = finished(script)
     assert re.search(log_line('Navigating to goal: 2.0 3.0...'), output)
     assert 'result: TaskResult.SUCCEEDED' in output
+
+
+def test_bad_numbers_are_refused_naming_the_argument_before_anything_is_sent(
+        servers, module_launch, tmp_path):
+    received = Since(servers)
+    output = finished(run_script(module_launch, tmp_path, '''
+        for call in (lambda: nav.spin(spin_dist='a lot'),
+                     lambda: nav.spin(time_allowance=-1),
+                     lambda: nav.backup(backup_speed=float('nan')),
+                     lambda: nav.driveOnHeading(dist=True),
+                     lambda: nav.clearCostmapAroundRobot(float('inf'))):
+            try:
+                call()
+                print('sent')
+            except ValueError as error:
+                print('refused:', error)
+        print('good spin:', nav.spin(0.5), finish(nav))
+    '''))
+    refusals = re.findall('^refused: (.*)$', output, re.MULTILINE)
+    assert refusals == [
+        "spin_dist must be a finite number (int or float), got 'a lot'",
+        'time_allowance must be >= 0 s, got -1',
+        'backup_speed must be a finite number (int or float), got nan',
+        'dist must be a finite number (int or float), got True',
+        'reset_distance must be a finite number (int or float), got inf'], output
+    assert 'good spin: True TaskResult.SUCCEEDED' in output
+    received.wait_for('^spin goal: target_yaw=0.5 ')
+    # Only the good spin reached a server: the refused calls sent nothing.
+    reached = re.findall('^(?:spin|backup|drive_on_heading) goal|^clear', received.text, re.M)
+    assert reached == ['spin goal'], received.text

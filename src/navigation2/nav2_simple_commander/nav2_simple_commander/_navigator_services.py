@@ -6,6 +6,8 @@ its service, logging upstream's line once a second, then blocks until the answer
 
 from __future__ import annotations
 
+import math
+from numbers import Real
 from typing import Any
 
 import rclpy
@@ -21,6 +23,16 @@ from nav2_msgs.srv import (
 )
 from rclpy.client import Client
 from rclpy.node import Node
+
+
+def finite_number(name: str, value: Any) -> float:
+    """The argument as a float; refused, naming it, when it is no finite number.
+
+    Checked before anything is sent: a bad argument changes nothing on the robot.
+    """
+    if isinstance(value, bool) or not isinstance(value, Real) or not math.isfinite(value):
+        raise ValueError(f'{name} must be a finite number (int or float), got {value!r}')
+    return float(value)
 
 
 class NavigatorServices(Node):
@@ -77,20 +89,22 @@ class NavigatorServices(Node):
     def clearCostmapExceptRegion(self, reset_distance: float) -> None:
         """Clear the costmap except for a specified region."""
         self._call(self.clear_costmap_except_region_srv,
-                   ClearCostmapExceptRegion.Request(reset_distance=float(reset_distance)),
+                   ClearCostmapExceptRegion.Request(
+                       reset_distance=finite_number('reset_distance', reset_distance)),
                    'ClearCostmapExceptRegion service not available, waiting...')
 
     def clearCostmapAroundRobot(self, reset_distance: float) -> None:
         """Clear the costmap around the robot."""
         self._call(self.clear_costmap_around_robot_srv,
-                   ClearCostmapAroundRobot.Request(reset_distance=float(reset_distance)),
+                   ClearCostmapAroundRobot.Request(
+                       reset_distance=finite_number('reset_distance', reset_distance)),
                    'ClearCostmapAroundRobot service not available, waiting...')
 
     def clearCostmapAroundPose(self, pose: PoseStamped, reset_distance: float) -> None:
         """Clear the costmap around a specified pose."""
         self._call(self.clear_costmap_around_pose_srv,
-                   ClearCostmapAroundPose.Request(pose=pose,
-                                                  reset_distance=float(reset_distance)),
+                   ClearCostmapAroundPose.Request(
+                       pose=pose, reset_distance=finite_number('reset_distance', reset_distance)),
                    'ClearCostmapAroundPose service not available, waiting...')
 
     def getGlobalCostmap(self) -> Costmap:

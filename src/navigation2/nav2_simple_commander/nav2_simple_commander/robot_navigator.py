@@ -39,7 +39,7 @@ from nav_msgs.msg import Path
 from rclpy.action import ActionClient
 from rclpy.qos import QoSDurabilityPolicy, QoSHistoryPolicy, QoSProfile, QoSReliabilityPolicy
 
-from nav2_simple_commander._navigator_services import NavigatorServices
+from nav2_simple_commander._navigator_services import NavigatorServices, finite_number
 
 MANAGER_TYPE = 'nav2_msgs/srv/ManageLifecycleNodes'
 
@@ -51,14 +51,20 @@ class TaskResult(Enum):
     FAILED = 3
 
 
-def _duration(seconds: float) -> Duration:
-    """A Duration message from seconds (whole or fractional)."""
+def _duration(name: str, seconds: float) -> Duration:
+    """A Duration message from seconds (whole or fractional), refused when negative."""
+    if finite_number(name, seconds) < 0:
+        raise ValueError(f'{name} must be >= 0 s, got {seconds!r}')
     nanoseconds = round(float(seconds) * 1e9)
     return Duration(sec=nanoseconds // 1_000_000_000, nanosec=nanoseconds % 1_000_000_000)
 
 
 class BasicNavigator(NavigatorServices):
-    """Nav2's navigation, behaviour, path, docking, costmap and lifecycle calls."""
+    """Nav2's navigation, behaviour, path, docking, costmap and lifecycle calls.
+
+    Numeric arguments (distances, speeds, durations) are checked before anything is sent or
+    waited for: a bad one raises ValueError naming it, and nothing changes.
+    """
 
     def __init__(self, node_name: str = 'basic_navigator', namespace: str = '') -> None:
         super().__init__(node_name=node_name, namespace=namespace)
@@ -180,34 +186,37 @@ class BasicNavigator(NavigatorServices):
                               f'Following {len(gps_poses)} gps waypoints request was rejected!')
 
     def spin(self, spin_dist: float = 1.57, time_allowance: float = 10) -> bool:
+        goal = Spin.Goal(target_yaw=finite_number('spin_dist', spin_dist),
+                         time_allowance=_duration('time_allowance', time_allowance))
         self._waitForActionServer(self.spin_client, 'Spin')
-        goal = Spin.Goal(target_yaw=float(spin_dist), time_allowance=_duration(time_allowance))
         self.info(f'Spinning to angle {goal.target_yaw}....')
         return self._sendGoal(self.spin_client, goal, 'Spin request was rejected!')
 
     def backup(self, backup_dist: float = 0.15, backup_speed: float = 0.025,
                time_allowance: float = 10) -> bool:
+        goal = BackUp.Goal(target=Point(x=finite_number('backup_dist', backup_dist)),
+                           speed=finite_number('backup_speed', backup_speed),
+                           time_allowance=_duration('time_allowance', time_allowance))
         self._waitForActionServer(self.backup_client, 'Backup')
-        goal = BackUp.Goal(target=Point(x=float(backup_dist)), speed=float(backup_speed),
-                           time_allowance=_duration(time_allowance))
         self.info(f'Backing up {goal.target.x} m at {goal.speed} m/s....')
         return self._sendGoal(self.backup_client, goal, 'Backup request was rejected!')
 
     def driveOnHeading(self, dist: float = 0.15, speed: float = 0.025,
                        time_allowance: float = 10) -> bool:
+        goal = DriveOnHeading.Goal(target=Point(x=finite_number('dist', dist)),
+                                   speed=finite_number('speed', speed),
+                                   time_allowance=_duration('time_allowance', time_allowance))
         self._waitForActionServer(self.drive_on_heading_client, 'DriveOnHeading')
-        goal = DriveOnHeading.Goal(target=Point(x=float(dist)), speed=float(speed),
-                                   time_allowance=_duration(time_allowance))
         self.info(f'Drive {goal.target.x} m on heading at {goal.speed} m/s....')
         return self._sendGoal(self.drive_on_heading_client, goal,
                               'Drive On Heading request was rejected!')
 
     def assistedTeleop(self, time_allowance: float = 30) -> bool:
+        goal = AssistedTeleop.Goal(time_allowance=_duration('time_allowance', time_allowance))
         # Upstream's debug line, typo included: scripts' log filters may look for it.
         self.debug("Wainting for 'assisted_teleop' action server")
         while not self.assisted_teleop_client.wait_for_server(timeout_sec=1.0):
             self.info("'assisted_teleop' action server not available, waiting...")
-        goal = AssistedTeleop.Goal(time_allowance=_duration(time_allowance))
         self.info("Running 'assisted_teleop'....")
         return self._sendGoal(self.assisted_teleop_client, goal,
                               'Assisted Teleop request was rejected!')
@@ -337,7 +346,7 @@ class BasicNavigator(NavigatorServices):
                         check_for_collision: bool = False) -> Any:
         """Send a `SmoothPath` action request; the whole result."""
         request = SmoothPath.Goal(path=path, smoother_id=smoother_id,
-                                  max_smoothing_duration=_duration(max_duration),
+                                  max_smoothing_duration=_duration('max_duration', max_duration),
                                   check_for_collisions=check_for_collision)
         return self._runToResult(self.smoother_client, 'SmoothPath', request,
                                  'Smoothing path...', 'Smooth path was rejected!')
