@@ -205,6 +205,12 @@ def test_wait_until_nav2_active_sends_the_initial_pose_first(launch, tmp_path):
     lifecycle.wait_for_output('^initialpose: 0.5 0.25 in map$')
     # bt_navigator turned active only after amcl's pose: the navigator waited for it.
     assert 'bt_navigator active' in lifecycle.output
+    # robot_localization is no lifecycle node and needs no initial pose: neither is waited for.
+    output = finished(run_script(launch, tmp_path, '''
+        nav.waitUntilNav2Active(navigator='amcl', localizer='robot_localization')
+    '''))
+    assert re.search(log_line('Nav2 is ready for use!'), output), output
+    assert 'Initial Pose' not in output and 'initial pose' not in output
 
 
 def test_behaviours_docking_and_path_queries(servers, module_launch, tmp_path):
