@@ -37,3 +37,13 @@ def test_missing_cmake_is_reported_in_one_line(tmp_path):
     assert result.returncode == 1
     assert result.stderr.splitlines() == [
         'setup: cmake not found -- fix: install cmake 3.16 or newer (e.g. apt install cmake)']
+
+
+def test_unknown_argument_is_reported_in_one_line():
+    result = subprocess.run([str(REPO / 'scripts' / 'setup'), '--everything'], capture_output=True,
+                            text=True, timeout=60)
+    assert result.returncode == 1
+    assert result.stderr.splitlines() == [
+        "setup: unknown argument '--everything' (allowed: --demo, --tests or nothing) -- fix: "
+        'run scripts/setup, scripts/setup --demo or scripts/setup --tests']
+    assert result.stdout == ''
