@@ -1,0 +1,1 @@
+"""Nav2 Jazzy's AMCL in Python: the particle filter core (see the package README)."""
