@@ -341,3 +341,69 @@ def test_messages_round_trip_as_the_publisher_and_static_layer():
     assert (out.info.width, out.info.height, out.info.resolution) == (4, 3, 0.5)
     assert (out.info.origin.position.x, out.info.origin.position.z) == (-1.0, 0.1)
     assert list(out.data) == [0, 100, -1, 0] * 3 and out.header.frame_id == 'map'
+
+
+def test_inf_is_valid_clears_without_marking():
+    layered = _layered()
+    layer = _scan_layer(layered, inf_is_valid=True, raytrace_max_range=3.0)
+    layer.costmap[10, 30] = LETHAL_OBSTACLE  # an old mark 1 m ahead
+    layer.add_scan('scan', [math.inf], 0.0, 0.1, 0.1, 10.0, (0.51, 0.525, 0.0))
+    layered.update_map(0.51, 0.525, 0.0)
+    assert layer.costmap[10, 30] == FREE_SPACE  # the infinite reading cleared it
+    # ...and marked nothing: it stands at range_max, beyond obstacle_max_range (2.5 m)
+    assert (layer.costmap != LETHAL_OBSTACLE).all()
+
+
+def test_observation_persistence_keeps_recent_scans():
+    layered = _layered()
+    layer = _scan_layer(layered, observation_persistence=1.0, clearing=False)
+    layer.add_scan('scan', [1.0], 0.0, 0.1, 0.1, 10.0, (0.51, 0.525, 0.0), stamp=10.0)
+    layer.add_scan('scan', [1.0], math.pi / 2, 0.1, 0.1, 10.0, (0.51, 0.525, 0.0), stamp=10.5)
+    assert len(layer.sources['scan'].observations) == 2
+    layer.add_scan('scan', [1.0], math.pi, 0.1, 0.1, 10.0, (2.0, 0.525, 0.0), stamp=11.2)
+    assert [stamp for stamp, _ in layer.sources['scan'].observations] == [10.5, 11.2]
+
+
+def test_combination_methods_and_an_unknown_one():
+    layered = _layered()
+    layer = ObstacleLayer('obstacle_layer', layered, {'combination_method': 0},
+                          {'track_unknown_space': True})
+    layer.costmap[:] = NO_INFORMATION
+    layer.costmap[0, 0], layer.costmap[0, 1] = 10, FREE_SPACE
+    layered.costmap.costmap[:] = 200
+    layer.update_costs(layered.costmap)  # Overwrite: known cells replace the master's
+    assert layered.costmap.costmap[0, :3].tolist() == [10, 0, 200]
+    odd = ObstacleLayer('obstacle_layer', layered, {'combination_method': 7})
+    assert odd.combination_method == 1 and 'Param combination_method: 7' in odd.warnings[0]
+
+
+def test_inflate_around_unknown():
+    layered = _layered(track_unknown=True)
+    static = StaticLayer('static_layer', layered, {}, {'track_unknown_space': True})
+    layered.add_plugin(static)
+    layered.add_plugin(InflationLayer('inflation_layer', layered,
+                                      {'inflation_radius': 0.3, 'cost_scaling_factor': 3.0,
+                                       'inflate_around_unknown': True}))
+    layered.set_footprint(make_footprint_from_string(SQUARE))
+    grid = np.zeros((60, 60), dtype=np.int8)
+    grid[30, 30] = -1
+    static.process_map(60, 60, 0.05, 0.0, 0.0, grid.ravel())
+    layered.update_map(0.5, 0.5, 0.0)
+    # the unknown cell is a source: distance 0 makes it lethal, as upstream's rule gives
+    assert layered.costmap.costmap[30, 30] == LETHAL_OBSTACLE
+    assert layered.costmap.costmap[30, 33] == INSCRIBED_INFLATED_OBSTACLE
+    assert layered.costmap.costmap[30, 36] == int(252 * math.exp(-3.0 * (0.3 - 0.2)))
+
+
+def test_static_layer_in_a_rolling_window_follows_the_robot():
+    layered = _layered(rolling=True)
+    static = StaticLayer('static_layer', layered, {}, {'track_unknown_space': True})
+    layered.add_plugin(static)
+    grid = np.zeros((200, 200), dtype=np.int8)
+    grid[100, 150] = 100  # (7.5, 5.0) in a 10 m map
+    static.process_map(200, 200, 0.05, 0.0, 0.0, grid.ravel())
+    assert layered.costmap.size_x == 60  # the rolling window keeps its own size
+    layered.update_map(7.0, 5.0, 0.0)
+    cell = layered.costmap.world_to_map(7.51, 5.01)
+    assert layered.costmap.costmap[cell[1], cell[0]] == LETHAL_OBSTACLE
+    assert (layered.costmap.costmap == LETHAL_OBSTACLE).sum() == 1

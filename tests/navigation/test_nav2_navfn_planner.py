@@ -181,3 +181,10 @@ def test_plans_become_nav_msgs_paths():
     assert path.header.frame_id == 'map' and len(path.poses) == len(plan)
     assert path.poses[0].pose.orientation.w == 1.0  # NavFn's poses carry no heading...
     assert pose_from_msg(path.poses[-1]) == pytest.approx((3.0, 1.0, 1.0))  # ...but the goal's
+
+
+def test_a_cancelled_plan_raises_planner_cancelled():
+    from nav2_navfn_planner.exceptions import PlannerCancelled
+    with pytest.raises(PlannerCancelled, match=r'^Planner was cancelled$'):
+        NavfnPlanner().create_plan(_costmap(), (1.0, 1.0, 0.0), (3.0, 3.0, 0.0),
+                                   cancel_checker=lambda: True)
