@@ -49,6 +49,13 @@ def test_startup_then_shutdown_leaves_no_node_active(launch, probe):
     map_server.wait_for_output("yaml-filename parameter is empty, set map through "
                                "'load_map'-service")
 
+    assert manage(probe, ManageLifecycleNodes.Request.PAUSE)
+    assert not is_active(probe)
+    assert [state_of(probe, node) for node in MANAGED] == [State.PRIMARY_STATE_INACTIVE] * 2
+    assert manage(probe, ManageLifecycleNodes.Request.RESUME)
+    assert is_active(probe)
+    assert [state_of(probe, node) for node in MANAGED] == [State.PRIMARY_STATE_ACTIVE] * 2
+
     assert manage(probe, ManageLifecycleNodes.Request.SHUTDOWN)
     assert not is_active(probe)
     assert [state_of(probe, node) for node in MANAGED] == [State.PRIMARY_STATE_FINALIZED] * 2
