@@ -15,19 +15,16 @@ keeps running with the last good joints (upstream raises or exits). URDF only (n
 from __future__ import annotations
 
 import math
-import signal
 import sys
-import threading
 import xml.etree.ElementTree as ET
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import rclpy
+from node_runtime.spinning import ros_session, spin_until_stopped
 from rcl_interfaces.msg import ParameterDescriptor, ParameterType
-from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile
-from rclpy.signals import SignalHandlerOptions
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
 
@@ -262,28 +259,12 @@ def main(args: list[str] | None = None,
          setup: Callable[[JointStatePublisher], None] | None = None) -> None:
     """Run the node until Ctrl-C; `setup` adds to it first (joint_state_publisher_gui's
     slider topic and page)."""
-    stop = threading.Event()
-    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
-    # Ctrl-C sets a flag; the loop ends within 0.1 s (exit 0, no traceback).
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda _signum, _frame: stop.set())
-    argv = rclpy.utilities.remove_ros_args(args or sys.argv)[1:]
-    executor = SingleThreadedExecutor()
-    node = None
-    try:
+    with ros_session(args) as stop:
+        argv = rclpy.utilities.remove_ros_args(args or sys.argv)[1:]
         node = JointStatePublisher(argv[0] if argv else None)
         if setup is not None:
             setup(node)
-        executor.add_node(node)
-        while not stop.is_set() and rclpy.ok():
-            executor.spin_once(timeout_sec=0.1)
-    except ExternalShutdownException:
-        pass
-    finally:
-        executor.shutdown(timeout_sec=1.0)
-        if node is not None:
-            node.destroy_node()
-        rclpy.try_shutdown()
+        spin_until_stopped(node, stop)
 
 
 if __name__ == '__main__':
