@@ -4,15 +4,13 @@ from __future__ import annotations
 
 import argparse
 import os
-import signal
 import sys
 import threading
 import time
 
 import rclpy
-from node_runtime.discovery import announce_often
+from node_runtime.spinning import ros_session
 from rclpy.executors import ExternalShutdownException, ShutdownException, SingleThreadedExecutor
-from rclpy.signals import SignalHandlerOptions
 from rclpy.utilities import remove_ros_args
 
 from turtlesim_py import display
@@ -59,53 +57,46 @@ def main(argv: list[str] | None = None) -> int:
 
     from turtlesim_py.frame import TurtleFrame
 
-    # Our own handlers: Ctrl-C and SIGTERM only set a flag that the main thread (which never
-    # blocks in C) notices within 0.1 s; the canvas is then saved and logged while the context
-    # is still valid, and the process exits with 0.
-    announce_often()  # a restarted turtlesim is met by the running nodes within 0.5 s
-    rclpy.init(args=argv, signal_handler_options=SignalHandlerOptions.NO)
-    signal.signal(signal.SIGINT, _interrupt)
-    signal.signal(signal.SIGTERM, _interrupt)
-    node = TurtleFrame(canvas_png=args.canvas_png or DEFAULT_CANVAS_PNG, fixed_step=args.fixed_step,
-                       introspection=args.service_introspection)
-    if problem:
-        node.get_logger().warning(f'No window: {problem}; running headless')
-    executor = make_executor()
-    executor.add_node(node)
-    # ROS callbacks on a spinning thread, the tick on its own thread (TurtleFrame.start), the
-    # main thread waits for a signal (headless) or runs Qt (window).
-    spinner = threading.Thread(target=_spin_quietly, args=(executor,), name='ros-spin',
-                               daemon=True)
-    spinner.start()
-    node.start()
-    try:
-        if windowed:
-            _run_window(app, node, spinner)
-        else:
-            # Sleep, never _stop.wait(): the signal handler runs on this same thread and calls
-            # _stop.set(), which takes the event's non-reentrant lock; landing while wait()
-            # holds that lock, it would wait for itself forever. (A turtlesim once hung on
-            # SIGTERM in a test run this way, as far as the evidence goes.)
-            while not _stop.is_set() and spinner.is_alive():
-                time.sleep(0.1)
-    finally:
-        node.stop()
-        if args.canvas_png:  # only when asked: no file appears in the working directory unasked
-            try:
-                path = node.save_canvas()
-                node.get_logger().info(f'Canvas written to {path}')
-            except OSError as error:
-                node.get_logger().error(f'Could not write the canvas: {error}')
-        if args.tick_stats:
-            node.write_tick_stats(args.tick_stats)
-        executor.shutdown(timeout_sec=2.0)
-        spinner.join(timeout=2.0)
-        node.destroy_node()
-        rclpy.try_shutdown()
+    # node_runtime's handlers: Ctrl-C and SIGTERM only set `stop`, which the main thread
+    # notices within 0.1 s; the canvas is then saved and logged while the context is still
+    # valid, and the process exits with 0 (or within the shutdown budget, whatever hangs).
+    with ros_session(argv) as stop:
+        node = TurtleFrame(canvas_png=args.canvas_png or DEFAULT_CANVAS_PNG,
+                           fixed_step=args.fixed_step, introspection=args.service_introspection)
+        if problem:
+            node.get_logger().warning(f'No window: {problem}; running headless')
+        executor = make_executor()
+        executor.add_node(node)
+        # ROS callbacks on a spinning thread, the tick on its own thread (TurtleFrame.start),
+        # the main thread waits for a signal (headless) or runs Qt (window).
+        spinner = threading.Thread(target=_spin_quietly, args=(executor, stop), name='ros-spin',
+                                   daemon=True)
+        spinner.start()
+        node.start()
+        try:
+            if windowed:
+                _run_window(app, node, spinner, stop)
+            else:
+                # Sleep, never stop.wait(): the signal handler runs on this same thread and
+                # calls stop.set(), which takes the event's non-reentrant lock; landing while
+                # wait() holds that lock, it would wait for itself forever. (A turtlesim once
+                # hung on SIGTERM in a test run this way, as far as the evidence goes.)
+                while not stop.is_set() and spinner.is_alive():
+                    time.sleep(0.1)
+        finally:
+            node.stop()
+            if args.canvas_png:  # only when asked: no file appears in the directory unasked
+                try:
+                    path = node.save_canvas()
+                    node.get_logger().info(f'Canvas written to {path}')
+                except OSError as error:
+                    node.get_logger().error(f'Could not write the canvas: {error}')
+            if args.tick_stats:
+                node.write_tick_stats(args.tick_stats)
+            executor.shutdown(timeout_sec=2.0)
+            spinner.join(timeout=2.0)
+            node.destroy_node()
     return 0
-
-
-_stop = threading.Event()
 
 
 def make_executor():
@@ -120,11 +111,7 @@ def make_executor():
     return SingleThreadedExecutor()
 
 
-def _interrupt(signum, frame) -> None:
-    _stop.set()
-
-
-def _run_window(app, node, spinner) -> None:
+def _run_window(app, node, spinner, stop: threading.Event) -> None:
     """Qt owns the main thread and repaints the window when the simulation changed."""
     from PySide6.QtCore import QTimer
 
@@ -135,7 +122,7 @@ def _run_window(app, node, spinner) -> None:
     timer = QTimer()
 
     def refresh() -> None:
-        if _stop.is_set() or not spinner.is_alive():
+        if stop.is_set() or not spinner.is_alive():
             app.quit()
         elif node.dirty:
             node.dirty = False
@@ -146,7 +133,7 @@ def _run_window(app, node, spinner) -> None:
     app.exec()
 
 
-def _spin_quietly(executor) -> None:
+def _spin_quietly(executor, stop: threading.Event) -> None:
     try:
         if isinstance(executor, SingleThreadedExecutor):
             # Blocks until executor.shutdown() at the end of main(): no idle wake-ups (each
@@ -154,7 +141,7 @@ def _spin_quietly(executor) -> None:
             executor.spin()
         else:
             # The EventsExecutor's spin() keeps a core busy in rclpy 7.1.6; spin_once does not.
-            while not _stop.is_set() and rclpy.ok():
+            while not stop.is_set() and rclpy.ok():
                 executor.spin_once(timeout_sec=0.1)
     except (KeyboardInterrupt, ExternalShutdownException, ShutdownException):
         pass
