@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import argparse
 import shutil
-import signal
 import subprocess
 import sys
 import threading
@@ -18,8 +17,8 @@ from typing import Any
 
 import rclpy
 import yaml
+from node_runtime.spinning import ros_session
 from rclpy.executors import SingleThreadedExecutor
-from rclpy.signals import SignalHandlerOptions
 from tf2_msgs.srv import FrameGraph
 
 SERVICE_WAIT = 10.0  # seconds for our own tf2_frames service to appear and answer
@@ -44,14 +43,9 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
 
 def main() -> int:
     args = parse_args(rclpy.utilities.remove_ros_args(sys.argv)[1:])
-    stop = threading.Event()
-    rclpy.init(args=sys.argv, signal_handler_options=SignalHandlerOptions.NO)
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda _signum, _frame: stop.set())
-    try:
+    # Ctrl-C or SIGTERM ends the listening early with 0 (no graph written).
+    with ros_session(sys.argv) as stop:
         return view_frames(args, stop)
-    finally:
-        rclpy.try_shutdown()
 
 
 def view_frames(args: argparse.Namespace, stop: threading.Event) -> int:
