@@ -9,14 +9,15 @@ import argparse
 import asyncio
 import json
 import os
-import signal
 import sys
+import threading
 import time
 from pathlib import Path
 from typing import Any
 
 from aiohttp import WSMsgType, web
 from node_runtime.discovery import announce_often
+from node_runtime.spinning import SIGNAL_CHECK_PERIOD, stop_on_signals
 
 from rqt_web import forms, instance, rviz, security, tf_feed
 from rqt_web.ros_bridge import RosBridge
@@ -545,17 +546,21 @@ def main(argv: list[str] | None = None) -> int:
     if args.host not in ('127.0.0.1', 'localhost', '::1'):
         print(f'WARNING: listening on {args.host}: other machines can reach this server; '
               'only the token protects it', file=sys.stderr, flush=True)
+    # node_runtime's handlers (not asyncio's): Ctrl-C and SIGTERM set `stop` and give the
+    # server its shutdown budget; a SIGTERM while it stops ends it at once.
+    stop = threading.Event()
+    stop_on_signals(stop)
     announce_often()  # without it, 1 node start in 6 reached the graph only after 2-3 s
     token = security.new_token()
     port_holder = {'port': args.port}
     app = make_app(token, args.host, port_holder)
     state_path = Path(args.state_file) if args.state_file else instance.state_file()
-    asyncio.run(_serve(app, args.host, port_holder, token, state_path))
+    asyncio.run(_serve(app, args.host, port_holder, token, state_path, stop))
     return 0
 
 
 async def _serve(app: web.Application, host: str, port_holder: dict, token: str,
-                 state_path: Path) -> None:
+                 state_path: Path, stop: threading.Event) -> None:
     runner = web.AppRunner(app, handle_signals=False, access_log=None)
     await runner.setup()
     site = web.TCPSite(runner, host, port_holder['port'])
@@ -564,12 +569,10 @@ async def _serve(app: web.Application, host: str, port_holder: dict, token: str,
     server = instance.Instance(os.getpid(), host, port_holder['port'], token)
     instance.write_state(state_path, server)
     print(f'rqt web app listening on {host}:{server.port} (pid {server.pid})', flush=True)
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(signum, stop.set)
     try:
-        await stop.wait()
+        # Polled: the handler runs on this thread, between two of the loop's bytecodes.
+        while not stop.is_set():
+            await asyncio.sleep(SIGNAL_CHECK_PERIOD)
     finally:
         if instance.read_state(state_path) == server:
             state_path.unlink(missing_ok=True)
