@@ -8,6 +8,7 @@ import re
 from lifecycle_msgs.msg import State
 from lifecycle_msgs.srv import GetState
 from nav2_msgs.srv import ManageLifecycleNodes
+from rcl_interfaces.srv import GetParameters
 from std_srvs.srv import Trigger
 
 from support import executable
@@ -96,3 +97,15 @@ def test_map_saver_cli_help(launch):
         '  --free <threshold_free>\n  --fmt <image_format>\n'
         '  --mode trinary(default)/scale/raw\n\n'
         'NOTE: --ros-args should be passed at the end of command line\n')
+
+
+def test_map_saver_server_launch_file_brings_the_saver_up(launch, ros_env, probe):
+    run = launch(argv=['ros2', 'launch', 'nav2_map_server', 'map_saver_server.launch.py'],
+                 env=ros_env)
+    run.wait_for_output('Managed nodes are active', timeout=30)
+    assert is_active(probe)
+    assert state_of(probe, 'map_saver') == State.PRIMARY_STATE_ACTIVE
+    # the launch file's parameters reached the node
+    values = probe.call(GetParameters, '/map_saver/get_parameters', GetParameters.Request(
+        names=['save_map_timeout', 'occupied_thresh_default'])).values
+    assert [value.double_value for value in values] == [2.0, 0.65]
