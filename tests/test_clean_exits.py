@@ -21,6 +21,7 @@ import pytest
 
 from support import executable
 
+FLEXIBLE_URDF = Path(__file__).resolve().parents[1] / 'src/urdf_tutorial/urdf/06-flexible.urdf'
 CLEAN = {0, 2, 130, 143, -signal.SIGINT, -signal.SIGTERM}
 # (label, argv builder, a regex seen once it works, or None: wait 1.5 s instead)
 SUBJECTS = [
@@ -47,6 +48,11 @@ SUBJECTS = [
     # there would be no 'starting' point to signal (the daemon path ends with exit code 2 too).
     ('ros2 param get', lambda: ['ros2', 'param', 'get', '--no-daemon', '/nobody_here', 'x'],
      None),
+    ('joint_state_publisher', lambda: [executable('joint_state_publisher',
+                                                  'joint_state_publisher'), str(FLEXIBLE_URDF)],
+     None),
+    # Signalled within its 5 s of listening (a stop writes no graph).
+    ('view_frames', lambda: [executable('tf2_tools', 'view_frames')], r'Listening to tf data'),
 ]
 POINTS = ('starting', 'working', 'later')
 
@@ -57,7 +63,8 @@ def run_and_signal(argv: list[str], env: dict[str, str], log: Path, ready: str |
     import re
     primary, replica = pty.openpty()  # teleop reads keys from a terminal
     with open(log, 'wb') as out:
-        process = subprocess.Popen(argv, env=env, stdin=replica, stdout=out,
+        # cwd: whatever a subject writes (view_frames' graph) stays out of the repo.
+        process = subprocess.Popen(argv, env=env, stdin=replica, stdout=out, cwd=log.parent,
                                    stderr=subprocess.STDOUT, start_new_session=True)
     os.close(replica)
     try:
