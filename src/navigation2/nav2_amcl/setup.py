@@ -16,4 +16,9 @@ setup(
     maintainer_email='team@turtles.example.com',
     description="Nav2's AMCL particle filter in Python: motion and laser models, KLD sampling.",
     license='Apache-2.0',
+    entry_points={
+        'console_scripts': [
+            'amcl = nav2_amcl.amcl_node:main',
+        ],
+    },
 )
