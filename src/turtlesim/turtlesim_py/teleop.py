@@ -3,20 +3,17 @@
 from __future__ import annotations
 
 import os
-import signal
 import sys
 import termios
 import threading
 from dataclasses import dataclass
 
-import rclpy
 from geometry_msgs.msg import Twist
 from node_runtime.keyboard import RawTerminal
 from node_runtime.rclcpp_parity import RclcppParameters, declare_rclcpp_parameters
+from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.action import ActionClient
-from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
-from rclpy.signals import SignalHandlerOptions
 from turtlesim.action import RotateAbsolute
 
 from turtlesim_py.turtle import TOPIC_QOS
@@ -94,17 +91,10 @@ class TeleopTurtle(RclcppParameters, Node):
             pass
 
 
-_quit = threading.Event()
-
-
-def _on_sigint(signum, frame) -> None:
-    _quit.set()
-
-
-def key_loop(node: TeleopTurtle, fd: int) -> int:
+def key_loop(node: TeleopTurtle, fd: int, stop: threading.Event) -> int:
     print(INSTRUCTIONS, flush=True)
-    with RawTerminal(fd):
-        while not _quit.is_set():
+    with RawTerminal(fd):  # a read returns within 0.1 s: Ctrl-C (which sets stop) is seen
+        while not stop.is_set():
             try:
                 data = os.read(fd, 1)
             except InterruptedError:
@@ -124,31 +114,18 @@ def key_loop(node: TeleopTurtle, fd: int) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    rclpy.init(args=sys.argv if argv is None else argv,
-               signal_handler_options=SignalHandlerOptions.NO)
-    signal.signal(signal.SIGINT, _on_sigint)
-    signal.signal(signal.SIGTERM, _on_sigint)
-    node = TeleopTurtle()
-    executor = SingleThreadedExecutor()
-    executor.add_node(node)
-    spinner = threading.Thread(target=_spin, args=(executor,), daemon=True)
-    spinner.start()
-    try:
-        status = key_loop(node, sys.stdin.fileno())
-    except termios.error as error:
-        print(f'turtle_teleop_key needs a terminal on stdin: {error}', file=sys.stderr)
-        status = 1
-    finally:
-        # Stop the spinning thread before anything is destroyed under it.
-        rclpy.try_shutdown()
-        spinner.join(timeout=5.0)
-        executor.shutdown(timeout_sec=1.0)
-        node.destroy_node()
+    with ros_session(sys.argv if argv is None else argv) as stop:
+        node = TeleopTurtle()
+        # ROS callbacks (the rotation goals' answers) on a thread, the keys on this one.
+        spinner = threading.Thread(target=spin_until_stopped, args=(node, stop), daemon=True)
+        spinner.start()
+        try:
+            status = key_loop(node, sys.stdin.fileno(), stop)
+        except termios.error as error:
+            print(f'turtle_teleop_key needs a terminal on stdin: {error}', file=sys.stderr)
+            status = 1
+        finally:
+            # The spinning thread destroys the node once it has stopped.
+            stop.set()
+            spinner.join(timeout=5.0)
     return status
-
-
-def _spin(executor: SingleThreadedExecutor) -> None:
-    try:
-        executor.spin()
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
