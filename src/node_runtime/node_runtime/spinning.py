@@ -61,6 +61,21 @@ def stop_on_signals(stop: threading.Event) -> None:
 
 
 @contextmanager
+def stopping_on_signals(stop: threading.Event) -> Iterator[None]:
+    """stop_on_signals for a while only: for a session inside a process that goes on after
+    it (rosbag2_py's record()/play(), called from a script's main thread). On leaving, the
+    previous handlers come back and the shutdown budget of a stop is called off."""
+    previous = {signum: signal.getsignal(signum) for signum in (signal.SIGINT, signal.SIGTERM)}
+    stop_on_signals(stop)
+    try:
+        yield
+    finally:
+        faulthandler.cancel_dump_traceback_later()
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+
+
+@contextmanager
 def ros_session(args: list[str] | None = None) -> Iterator[threading.Event]:
     """rclpy.init with our own SIGINT/SIGTERM handlers; yields the event they set."""
     stop = threading.Event()

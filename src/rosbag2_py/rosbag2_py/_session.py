@@ -7,11 +7,10 @@ never interrupts rclpy (or a file write) half-way: the bag is always closed prop
 from __future__ import annotations
 
 import os
-import signal
 import sys
 import threading
 from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from contextlib import ExitStack, contextmanager
 from typing import Any, NoReturn
 
 SIGNAL_CHECK_PERIOD = 0.1
@@ -28,16 +27,18 @@ def ros_node(name: str, stop: threading.Event | None = None, use_sim_time: bool 
     `use_sim_time`: its clock follows /clock (the node's `use_sim_time` parameter); `meet`:
     yielded once it has met the graph already there (bounded, MEET_BOUND + SETTLE_BOUND)."""
     import rclpy
+    from node_runtime.spinning import stopping_on_signals
     from rclpy.context import Context
     from rclpy.parameter import Parameter
     from rclpy.signals import SignalHandlerOptions
 
     stop = stop or threading.Event()
+    handlers = ExitStack()
     # Signal handlers can only be set from the main thread: elsewhere (rosbag2_py's
-    # Recorder/Player run in a thread) cancel() sets the stop event.
-    main = threading.current_thread() is threading.main_thread()
-    previous = {s: signal.signal(s, lambda _n, _f: stop.set())
-                for s in (signal.SIGINT, signal.SIGTERM)} if main else {}
+    # Recorder/Player run in a thread) cancel() sets the stop event. node_runtime's: a stop
+    # has the shutdown budget, a SIGTERM while stopping ends the process at once.
+    if threading.current_thread() is threading.main_thread():
+        handlers.enter_context(stopping_on_signals(stop))
     overrides = [Parameter('use_sim_time', Parameter.Type.BOOL, True)] if use_sim_time else []
 
     def make() -> tuple[Any, Any]:
@@ -59,8 +60,7 @@ def ros_node(name: str, stop: threading.Event | None = None, use_sim_time: bool 
     finally:
         node.destroy_node()
         rclpy.try_shutdown(context=context)
-        for signum, handler in previous.items():
-            signal.signal(signum, handler)
+        handlers.close()
 
 
 def exit_now(result: int | str) -> NoReturn:
