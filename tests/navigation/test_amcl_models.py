@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from nav2_amcl.amcl_core import AmclCore
 from nav2_amcl.angles import angle_diff
 from nav2_amcl.laser_model import (
     LaserParams,
@@ -206,3 +207,16 @@ def test_kld_keeps_fewer_particles_for_a_concentrated_cloud():
 def test_min_particles_above_max_is_refused():
     with pytest.raises(ValueError, match=r'min_particles: 600 must be > 0 and <= max_particles'):
         ParticleFilter(min_samples=600, max_samples=500)
+
+
+@pytest.mark.parametrize(('params', 'message'), [
+    ({'robot_model_type': 'diff'}, "robot_model_type: 'diff' is not one of"),
+    ({'laser_model_type': 'likelihood_field_prob'},
+     "laser_model_type: 'likelihood_field_prob' is not one of"),
+    ({'resample_interval': 0}, 'resample_interval: must be >= 1, got 0'),
+    ({'max_beams': 1}, 'max_beams: must be >= 2, got 1'),
+    ({'min_particles': 3000}, 'min_particles: 3000 must be > 0 and <= max_particles'),
+])
+def test_amcl_core_refuses_parameters_it_cannot_run_with(params, message):
+    with pytest.raises(ValueError, match=message):
+        AmclCore(params)

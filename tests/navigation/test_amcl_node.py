@@ -126,3 +126,12 @@ def test_amcl_localises_and_publishes_pose_cloud_and_map_to_odom(launch, ros_env
         amcl.wait_for_output(r'Global initialisation done!', timeout=10.0)
     finally:
         probe.close()
+
+
+def test_a_wrong_model_name_fails_configure_in_one_line(launch):
+    amcl = launch('nav2_amcl', 'amcl', '--ros-args', '-p', 'autostart_node:=true',
+                  '-p', 'robot_model_type:=nav2_amcl::Differential')
+    amcl.wait_for_output(r"\[ERROR\] \[[0-9.]+\] \[amcl\]: robot_model_type: "
+                         r"'nav2_amcl::Differential' is not one of", timeout=20.0)
+    amcl.wait_for_output(r'Auto-starting node amcl failed to configure!', timeout=10.0)
+    assert 'Traceback' not in amcl.output

@@ -13,8 +13,8 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from nav2_amcl.angles import angle_diff, normalize
-from nav2_amcl.laser_model import LaserData, LaserParams, sensor_p
-from nav2_amcl.motion_model import DIFFERENTIAL, MotionNoise, odometry_update
+from nav2_amcl.laser_model import BEAM, LIKELIHOOD_FIELD, LaserData, LaserParams, sensor_p
+from nav2_amcl.motion_model import DIFFERENTIAL, OMNI, MotionNoise, odometry_update
 from nav2_amcl.occupancy import AmclMap
 from nav2_amcl.particle_filter import ParticleFilter
 
@@ -40,6 +40,25 @@ def _pick(cls: type, values: dict) -> dict:
     return {key: value for key, value in values.items() if key in names}
 
 
+def check_params(filter_params: FilterParams, laser_params: LaserParams) -> None:
+    """ValueError naming the first parameter the filter cannot run with."""
+    if filter_params.robot_model_type not in (DIFFERENTIAL, OMNI):
+        raise ValueError(f"robot_model_type: '{filter_params.robot_model_type}' is not one "
+                         f"of '{DIFFERENTIAL}', '{OMNI}'")
+    if laser_params.laser_model_type not in (LIKELIHOOD_FIELD, BEAM):
+        raise ValueError(f"laser_model_type: '{laser_params.laser_model_type}' is not one of "
+                         f"'{LIKELIHOOD_FIELD}', '{BEAM}' (likelihood_field_prob is not "
+                         'implemented here)')
+    if filter_params.resample_interval < 1:
+        raise ValueError('resample_interval: must be >= 1, got '
+                         f'{filter_params.resample_interval}')
+    if laser_params.max_beams < 2:
+        raise ValueError(f'max_beams: must be >= 2, got {laser_params.max_beams}')
+    if filter_params.pf_err <= 0 or laser_params.sigma_hit <= 0:
+        raise ValueError('pf_err and sigma_hit: must be > 0, got '
+                         f'{filter_params.pf_err} and {laser_params.sigma_hit}')
+
+
 @dataclass
 class Estimate:
     """The published pose: (x, y, yaw) and its 3 x 3 covariance (x, y, yaw)."""
@@ -56,9 +75,7 @@ class AmclCore:
         self.filter_params = FilterParams(**_pick(FilterParams, values))
         self.laser_params = LaserParams(**_pick(LaserParams, values))
         self.noise = MotionNoise(**_pick(MotionNoise, values))
-        if self.filter_params.resample_interval < 1:
-            raise ValueError('resample_interval: must be >= 1, got '
-                             f'{self.filter_params.resample_interval}')
+        check_params(self.filter_params, self.laser_params)
         self.rng = np.random.default_rng(seed)
         self.pf = ParticleFilter(
             min_samples=self.filter_params.min_particles,

@@ -181,7 +181,11 @@ class AmclNode(LifecycleNode):
                                 ) -> Empty.Response:
         if self.core is not None and self.core.map is not None:
             self.get_logger().info('Initializing with uniform distribution')
-            self.core.global_localization()
+            try:
+                self.core.global_localization()
+            except ValueError as error:
+                self.get_logger().error(str(error))
+                return response
             self.get_logger().info('Global initialisation done!')
         return response
 
@@ -220,7 +224,11 @@ class AmclNode(LifecycleNode):
                           msg.range_max, core.laser_params)
         laser_pose = np.array([lt.translation.x, lt.translation.y, 0.0])
         updated_before = core.resample_count
-        estimate = core.laser_received(odom_pose, data, laser_pose)
+        try:
+            estimate = core.laser_received(odom_pose, data, laser_pose)
+        except ValueError as error:  # e.g. a map without free cells for recovery particles
+            self.get_logger().error(str(error), throttle_duration_sec=5.0)
+            return
         if core.resample_count != updated_before or estimate is not None:
             self._publish_cloud(msg.header.stamp)
         if estimate is not None:
