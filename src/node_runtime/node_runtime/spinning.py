@@ -44,13 +44,13 @@ def limit_shutdown(budget: float = SHUTDOWN_BUDGET) -> None:
     faulthandler.dump_traceback_later(budget, exit=True)
 
 
-def stop_on_signals(stop: threading.Event) -> None:
-    """SIGINT and SIGTERM set `stop` and start the shutdown budget; a SIGTERM while stopping
+def stop_on_signals(stop: threading.Event, budget: float = SHUTDOWN_BUDGET) -> None:
+    """SIGINT and SIGTERM set `stop` and start the shutdown `budget`; a SIGTERM while stopping
     ends the process at once (a second SIGINT does nothing, as in rclcpp)."""
     def on_signal(signum: int, _frame: object) -> None:
         if not stop.is_set():
             stop.set()
-            limit_shutdown()
+            limit_shutdown(budget)
         elif signum == signal.SIGTERM:
             faulthandler.dump_traceback(all_threads=True)  # where the shutdown was
             signal.signal(signal.SIGTERM, signal.SIG_DFL)
@@ -61,12 +61,13 @@ def stop_on_signals(stop: threading.Event) -> None:
 
 
 @contextmanager
-def stopping_on_signals(stop: threading.Event) -> Iterator[None]:
+def stopping_on_signals(stop: threading.Event,
+                        budget: float = SHUTDOWN_BUDGET) -> Iterator[None]:
     """stop_on_signals for a while only: for a session inside a process that goes on after
     it (rosbag2_py's record()/play(), called from a script's main thread). On leaving, the
     previous handlers come back and the shutdown budget of a stop is called off."""
     previous = {signum: signal.getsignal(signum) for signum in (signal.SIGINT, signal.SIGTERM)}
-    stop_on_signals(stop)
+    stop_on_signals(stop, budget)
     try:
         yield
     finally:

@@ -18,6 +18,10 @@ SIGNAL_CHECK_PERIOD = 0.1
 # announcement period (3 s, as the daemon), then waits for their endpoints to arrive.
 MEET_BOUND = 3.3
 SETTLE_BOUND = 1.0
+# Seconds a stopped recorder or player may take to end: closing a bag (compressing its last
+# split, writing metadata) can outlast a node's 4 s budget, and a bag cut short loses data.
+# A SIGTERM while stopping still ends it at once.
+CLOSE_BUDGET = 60.0
 
 
 @contextmanager
@@ -38,7 +42,7 @@ def ros_node(name: str, stop: threading.Event | None = None, use_sim_time: bool 
     # Recorder/Player run in a thread) cancel() sets the stop event. node_runtime's: a stop
     # has the shutdown budget, a SIGTERM while stopping ends the process at once.
     if threading.current_thread() is threading.main_thread():
-        handlers.enter_context(stopping_on_signals(stop))
+        handlers.enter_context(stopping_on_signals(stop, CLOSE_BUDGET))
     overrides = [Parameter('use_sim_time', Parameter.Type.BOOL, True)] if use_sim_time else []
 
     def make() -> tuple[Any, Any]:
