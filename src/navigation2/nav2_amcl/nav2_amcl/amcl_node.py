@@ -16,10 +16,9 @@ import sys
 import numpy as np
 from geometry_msgs.msg import Pose, PoseWithCovarianceStamped, TransformStamped
 from nav2_msgs.msg import Particle, ParticleCloud
-from nav2_util.lifecycle_node import LifecycleNode
+from nav2_util.lifecycle_node import LifecycleNode, run_server
 from nav2_util.parameters import declare_checked, warn_unknown_parameters
 from nav_msgs.msg import OccupancyGrid
-from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.duration import Duration
 from rclpy.lifecycle import State, TransitionCallbackReturn
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
@@ -118,21 +117,10 @@ class AmclNode(LifecycleNode):
                                              p['initial_pose.yaw']]), INITIAL_COV)
         return result
 
-    def on_deactivate(self, state: State) -> TransitionCallbackReturn:
-        self.get_logger().info('Deactivating')
-        return super().on_deactivate(state)
 
-    def on_cleanup(self, state: State) -> TransitionCallbackReturn:
-        self.get_logger().info('Cleaning up')
-        self._release()
-        return TransitionCallbackReturn.SUCCESS
 
-    def on_shutdown(self, state: State) -> TransitionCallbackReturn:
-        self.get_logger().info('Shutting down')
-        self._release()
-        return TransitionCallbackReturn.SUCCESS
 
-    def _release(self) -> None:
+    def release(self) -> None:
         for handle in self._handles:
             if hasattr(handle, 'srv_type'):
                 self.destroy_service(handle)
@@ -280,11 +268,7 @@ class AmclNode(LifecycleNode):
 
 
 def main(args: list[str] | None = None) -> int:
-    with ros_session(args) as stop:
-        node = AmclNode()
-        node.stop_event = stop
-        spin_until_stopped(node, stop)
-    return 0
+    return run_server(AmclNode, args)
 
 
 if __name__ == '__main__':

@@ -15,10 +15,9 @@ from dataclasses import replace
 
 import rclpy
 from nav2_msgs.srv import SaveMap
-from nav2_util.lifecycle_node import LifecycleNode
+from nav2_util.lifecycle_node import LifecycleNode, run_server
 from nav2_util.parameters import declare_checked, warn_unknown_parameters
 from nav_msgs.msg import OccupancyGrid
-from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.lifecycle import State, TransitionCallbackReturn
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
@@ -67,21 +66,10 @@ class MapSaver(LifecycleNode):
         self.get_logger().info('Activating')
         return super().on_activate(state)
 
-    def on_deactivate(self, state: State) -> TransitionCallbackReturn:
-        self.get_logger().info('Deactivating')
-        return super().on_deactivate(state)
 
-    def on_cleanup(self, state: State) -> TransitionCallbackReturn:
-        self.get_logger().info('Cleaning up')
-        self._release()
-        return TransitionCallbackReturn.SUCCESS
 
-    def on_shutdown(self, state: State) -> TransitionCallbackReturn:
-        self.get_logger().info('Shutting down')
-        self._release()
-        return TransitionCallbackReturn.SUCCESS
 
-    def _release(self) -> None:
+    def release(self) -> None:
         if self._save_map_service is not None:
             self.destroy_service(self._save_map_service)
         self._save_map_service = None
@@ -168,11 +156,7 @@ class MapSaver(LifecycleNode):
 
 
 def main(args: list[str] | None = None) -> int:
-    with ros_session(args) as stop:
-        node = MapSaver()
-        node.stop_event = stop
-        spin_until_stopped(node, stop)
-    return 0
+    return run_server(MapSaver, args)
 
 
 if __name__ == '__main__':

@@ -12,11 +12,10 @@ from __future__ import annotations
 import sys
 
 from nav2_msgs.srv import LoadMap
-from nav2_util.lifecycle_node import LifecycleNode
+from nav2_util.lifecycle_node import LifecycleNode, run_server
 from nav2_util.parameters import declare_checked, warn_unknown_parameters
 from nav_msgs.msg import OccupancyGrid
 from nav_msgs.srv import GetMap
-from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.lifecycle import State, TransitionCallbackReturn
 from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
@@ -80,27 +79,16 @@ class MapServer(LifecycleNode):
             self._publisher.publish(self._map)
         return result
 
-    def on_deactivate(self, state: State) -> TransitionCallbackReturn:
-        self.get_logger().info('Deactivating')
-        return super().on_deactivate(state)
 
-    def on_cleanup(self, state: State) -> TransitionCallbackReturn:
-        self.get_logger().info('Cleaning up')
-        self._release()
-        self._map = None
-        return TransitionCallbackReturn.SUCCESS
 
-    def on_shutdown(self, state: State) -> TransitionCallbackReturn:
-        self.get_logger().info('Shutting down')
-        self._release()
-        return TransitionCallbackReturn.SUCCESS
 
-    def _release(self) -> None:
+    def release(self) -> None:
         if self._publisher is not None:
             self.destroy_lifecycle_publisher(self._publisher)
         for service in self._map_services:
             self.destroy_service(service)
         self._publisher, self._map_services = None, []
+        self._map = None
 
     def _load(self, yaml_filename: str) -> tuple[LoadMapStatus, OccupancyGrid | None]:
         status, grid = load_map_from_yaml(yaml_filename, self.get_clock().now)
@@ -138,11 +126,7 @@ class MapServer(LifecycleNode):
 
 
 def main(args: list[str] | None = None) -> int:
-    with ros_session(args) as stop:
-        node = MapServer()
-        node.stop_event = stop
-        spin_until_stopped(node, stop)
-    return 0
+    return run_server(MapServer, args)
 
 
 if __name__ == '__main__':

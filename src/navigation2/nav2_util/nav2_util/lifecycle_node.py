@@ -14,11 +14,13 @@ lifecycle manager (docs/navigation.md).
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable
 from typing import Any
 
 from lifecycle_msgs.msg import State as StateMsg
 from node_runtime.rclcpp_parity import RclcppLifecycleTransitions
-from rclpy.lifecycle import Node, TransitionCallbackReturn
+from node_runtime.spinning import ros_session, spin_until_stopped
+from rclpy.lifecycle import Node, State, TransitionCallbackReturn
 
 from nav2_util.parameters import declare_checked
 
@@ -69,6 +71,23 @@ class LifecycleNode(RclcppLifecycleTransitions, Node):
             self.get_logger().error(f'Caught exception in callback for transition: {error}')
             return TransitionCallbackReturn.ERROR
 
+    def on_deactivate(self, state: State) -> TransitionCallbackReturn:
+        self.get_logger().info('Deactivating')
+        return super().on_deactivate(state)  # disables the lifecycle publishers
+
+    def on_cleanup(self, state: State) -> TransitionCallbackReturn:
+        self.get_logger().info('Cleaning up')
+        self.release()
+        return TransitionCallbackReturn.SUCCESS
+
+    def on_shutdown(self, state: State) -> TransitionCallbackReturn:
+        self.get_logger().info('Shutting down')
+        self.release()
+        return TransitionCallbackReturn.SUCCESS
+
+    def release(self) -> None:
+        """Destroy what on_configure made (at cleanup and at shutdown); servers override it."""
+
     def run_cleanups(self) -> None:
         """Bring an active or inactive node back to unconfigured (best effort)."""
         if self.state_id == StateMsg.PRIMARY_STATE_ACTIVE:
@@ -83,3 +102,12 @@ class LifecycleNode(RclcppLifecycleTransitions, Node):
         self.run_cleanups()
         self.get_logger().info('Destroying')
         super().destroy_node()
+
+
+def run_server(make: Callable[[], LifecycleNode], args: list[str] | None = None) -> int:
+    """A Nav2 server's main(): the node spins until Ctrl-C or SIGTERM, then stops cleanly."""
+    with ros_session(args) as stop:
+        node = make()
+        node.stop_event = stop
+        spin_until_stopped(node, stop)
+    return 0
