@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from launch.event import Event
     from launch.launch_context import LaunchContext
+    from launch.some_entities_type import SomeEntitiesType
 
 
 class BaseEventHandler:
@@ -43,7 +44,8 @@ class BaseEventHandler:
 
 
 class EventHandler(BaseEventHandler):
-    def __init__(self, *, matcher: Callable[[Event], bool], entities: Any = None,
+    def __init__(self, *, matcher: Callable[[Event], bool],
+                 entities: SomeEntitiesType | None = None,
                  handle_once: bool = False) -> None:
         super().__init__(matcher=matcher, handle_once=handle_once)
         self.__entities = entities

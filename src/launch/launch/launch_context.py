@@ -12,6 +12,8 @@ import os
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from collections.abc import Iterable
+
     from launch.event import Event
     from launch.event_handler import BaseEventHandler
     from launch.substitution import Substitution
@@ -35,7 +37,7 @@ class _ReadOnlyLocals:
 
 
 class LaunchContext:
-    def __init__(self, *, argv: list[str] | None = None, noninteractive: bool = False) -> None:
+    def __init__(self, *, argv: Iterable[str] | None = None, noninteractive: bool = False) -> None:
         self.__argv = list(argv) if argv is not None else []
         self.__noninteractive = noninteractive
         self._event_queue: asyncio.Queue = asyncio.Queue()

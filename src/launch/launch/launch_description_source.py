@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from launch.launch_context import LaunchContext
 from launch.logging import get_logger
@@ -10,11 +10,12 @@ from launch.utilities import normalize_to_list_of_substitutions, perform_substit
 
 if TYPE_CHECKING:
     from launch.launch_description import LaunchDescription
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 class LaunchDescriptionSource:
     def __init__(self, launch_description: LaunchDescription | None = None,
-                 location: Any = '<string>',
+                 location: SomeSubstitutionsType = '<string>',
                  method: str = 'unspecified mechanism from a script') -> None:
         self.__launch_description = launch_description
         self.__location = normalize_to_list_of_substitutions(location)

@@ -21,7 +21,7 @@ import signal
 import threading
 import time
 import traceback
-from collections.abc import Coroutine, Iterator
+from collections.abc import Coroutine, Iterable, Iterator
 
 from launch import logging as launch_logging
 from launch.actions.execute_local import signal_group
@@ -62,7 +62,7 @@ def get_loop() -> asyncio.AbstractEventLoop:
 
 
 class LaunchService:
-    def __init__(self, *, argv: list[str] | None = None, noninteractive: bool = False,
+    def __init__(self, *, argv: Iterable[str] | None = None, noninteractive: bool = False,
                  debug: bool = False) -> None:
         launch_logging.set_level(logging.DEBUG if debug else logging.INFO)
         self.__debug = debug

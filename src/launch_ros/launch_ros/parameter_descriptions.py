@@ -13,7 +13,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 from tempfile import NamedTemporaryFile
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import yaml
 from launch.frontend.parse_substitution import parse_substitution
@@ -26,11 +26,17 @@ from launch.utilities import (
 )
 from launch.utilities.type_utils import normalize_typed_substitution, perform_typed_substitution
 
+if TYPE_CHECKING:
+    from launch.some_substitutions_type import SomeSubstitutionsType
+    from launch.utilities.type_utils import AllowedTypesType, SomeValueType
+    from launch.utilities.typing_file_path import FilePath
+
 
 class ParameterValue:
     """A parameter value: a scalar, substitutions, or a list of them, with an optional type."""
 
-    def __init__(self, value: Any, *, value_type: Any = None) -> None:
+    def __init__(self, value: SomeValueType, *,
+                 value_type: AllowedTypesType | None = None) -> None:
         self.__value = normalize_typed_substitution(value, value_type)
         self.__value_type = value_type
         self.__evaluated: Any = None
@@ -55,7 +61,8 @@ class ParameterValue:
 class Parameter:
     """A named parameter, given to a node as `-p name:=value`."""
 
-    def __init__(self, name: Any, value: Any, *, value_type: Any = None) -> None:
+    def __init__(self, name: SomeSubstitutionsType, value: SomeValueType, *,
+                 value_type: AllowedTypesType | None = None) -> None:
         ensure_argument_type(name, SomeSubstitutionsType_types_tuple, 'name', 'Parameter')
         self.__name = normalize_to_list_of_substitutions(name)
         self.__value = ParameterValue(value, value_type=value_type)
@@ -88,7 +95,8 @@ class ParameterFile:
     """A parameters file; with allow_substs its `$(...)` are performed into a temporary copy
     (deleted by `cleanup()`)."""
 
-    def __init__(self, param_file: Any, *, allow_substs: Any = False) -> None:
+    def __init__(self, param_file: FilePath | SomeSubstitutionsType, *,
+                 allow_substs: bool | SomeSubstitutionsType = False) -> None:
         self.__evaluated: Path | None = None
         self.__temporary = False  # set before any check: __del__ runs even if __init__ raises
         ensure_argument_type(param_file, (*SomeSubstitutionsType_types_tuple, os.PathLike,

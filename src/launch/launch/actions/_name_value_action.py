@@ -13,13 +13,15 @@ if TYPE_CHECKING:
     from launch.frontend.entity import Entity
     from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
     from launch.substitution import Substitution
 
 
 class NameValueAction(Action):
     """Sets `name` to `value` in the mapping of the context that `_mapping` names."""
 
-    def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
+    def __init__(self, name: SomeSubstitutionsType, value: SomeSubstitutionsType,
+                 **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.__name = normalize_to_list_of_substitutions(name)
         self.__value = normalize_to_list_of_substitutions(value)

@@ -13,6 +13,7 @@ if TYPE_CHECKING:
     from launch.frontend.entity import Entity
     from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
     from launch.substitution import Substitution
 
 from launch.utilities.type_utils import normalize_typed_substitution, perform_typed_substitution
@@ -20,8 +21,9 @@ from launch.utilities.type_utils import normalize_typed_substitution, perform_ty
 
 @expose_action('append_env')
 class AppendEnvironmentVariable(Action):
-    def __init__(self, name: Any, value: Any, prepend: Any = False,
-                 separator: Any = os.pathsep, **kwargs: Any) -> None:
+    def __init__(self, name: SomeSubstitutionsType, value: SomeSubstitutionsType,
+                 prepend: bool | SomeSubstitutionsType = False,
+                 separator: SomeSubstitutionsType = os.pathsep, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.__name = normalize_to_list_of_substitutions(name)
         self.__value = normalize_to_list_of_substitutions(value)

@@ -18,6 +18,7 @@ from launch.utilities import normalize_to_list_of_substitutions, perform_substit
 if TYPE_CHECKING:
     from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 def _fail(message: str) -> RuntimeError:
@@ -27,7 +28,8 @@ def _fail(message: str) -> RuntimeError:
 
 @expose_action('arg')
 class DeclareLaunchArgument(Action):
-    def __init__(self, name: str, *, default_value: Any = None, description: str | None = None,
+    def __init__(self, name: str, *, default_value: SomeSubstitutionsType | None = None,
+                 description: str | None = None,
                  choices: list[str] | None = None, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.__name = name

@@ -43,8 +43,11 @@ from launch.utilities.type_utils import normalize_typed_substitution, perform_ty
 
 if TYPE_CHECKING:
     from launch.descriptions.executable import Executable
+    from launch.events.process.process_exited import ProcessExited
     from launch.launch_context import LaunchContext
     from launch.launch_description_entity import LaunchDescriptionEntity
+    from launch.some_entities_type import SomeEntitiesType
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 _PR_SET_PDEATHSIG = 1
 # Default escalation delays: the launch arguments of these names, else 5 s (upstream).
@@ -75,15 +78,16 @@ class ExecuteLocal(Action):
         self, *,
         process_description: Executable,
         shell: bool = False,
-        sigterm_timeout: Any = _SIGTERM_TIMEOUT,
-        sigkill_timeout: Any = _SIGKILL_TIMEOUT,
+        sigterm_timeout: SomeSubstitutionsType = _SIGTERM_TIMEOUT,
+        sigkill_timeout: SomeSubstitutionsType = _SIGKILL_TIMEOUT,
         emulate_tty: bool = False,
-        output: Any = 'log',
+        output: SomeSubstitutionsType = 'log',
         output_format: str = '[{this.process_description.final_name}] {line}',
         cached_output: bool = False,
         log_cmd: bool = False,
-        on_exit: Any = None,
-        respawn: Any = False,
+        on_exit: SomeEntitiesType | Callable[[ProcessExited, LaunchContext],
+                                            SomeEntitiesType | None] | None = None,
+        respawn: bool | SomeSubstitutionsType = False,
         respawn_delay: float | None = None,
         respawn_max_retries: int = -1,
         **kwargs: Any,

@@ -14,6 +14,7 @@ from launch.substitutions.text_substitution import TextSubstitution
 
 if TYPE_CHECKING:
     from launch.frontend.parser import Parser
+    from launch.some_substitutions_type import SomeSubstitutionsType
     from launch.substitution import Substitution
 
 
@@ -27,9 +28,13 @@ def _non_negative(entity: Entity, name: str) -> float | None:
 
 @expose_action('executable')
 class ExecuteProcess(ExecuteLocal):
-    def __init__(self, *, cmd: Iterable[Any], prefix: Any = None, name: Any = None,
-                 cwd: Any = None, env: dict[Any, Any] | None = None,
-                 additional_env: dict[Any, Any] | None = None, **kwargs: Any) -> None:
+    def __init__(self, *, cmd: Iterable[SomeSubstitutionsType],
+                 prefix: SomeSubstitutionsType | None = None,
+                 name: SomeSubstitutionsType | None = None,
+                 cwd: SomeSubstitutionsType | None = None,
+                 env: dict[SomeSubstitutionsType, SomeSubstitutionsType] | None = None,
+                 additional_env: dict[SomeSubstitutionsType, SomeSubstitutionsType] | None = None,
+                 **kwargs: Any) -> None:
         description = Executable(cmd=cmd, prefix=prefix, name=name, cwd=cwd, env=env,
                                  additional_env=additional_env)
         super().__init__(process_description=description, **kwargs)

@@ -21,12 +21,15 @@ if TYPE_CHECKING:
     from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
     from launch.launch_description_entity import LaunchDescriptionEntity
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_action('group')
 class GroupAction(Action):
     def __init__(self, actions: Iterable[Action], *, scoped: bool = True,
-                 forwarding: bool = True, launch_configurations: dict[Any, Any] | None = None,
+                 forwarding: bool = True,
+                 launch_configurations: dict[SomeSubstitutionsType, SomeSubstitutionsType]
+                 | None = None,
                  **left_over_kwargs: Any) -> None:
         super().__init__(**left_over_kwargs)
         self.__actions = actions

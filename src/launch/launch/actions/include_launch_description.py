@@ -25,12 +25,15 @@ from launch.utilities import normalize_to_list_of_substitutions, perform_substit
 if TYPE_CHECKING:
     from launch.frontend.parser import Parser
     from launch.launch_description_entity import LaunchDescriptionEntity
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_action('include')
 class IncludeLaunchDescription(Action):
-    def __init__(self, launch_description_source: Any, *,
-                 launch_arguments: Iterable[tuple[Any, Any]] | None = None,
+    def __init__(self,
+                 launch_description_source: LaunchDescriptionSource | SomeSubstitutionsType, *,
+                 launch_arguments: Iterable[tuple[SomeSubstitutionsType, SomeSubstitutionsType]]
+                 | None = None,
                  **kwargs: Any) -> None:
         super().__init__(**kwargs)
         if not isinstance(launch_description_source, LaunchDescriptionSource):

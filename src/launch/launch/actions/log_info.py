@@ -13,12 +13,13 @@ if TYPE_CHECKING:
     from launch.frontend.entity import Entity
     from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
     from launch.substitution import Substitution
 
 
 @expose_action('log')
 class LogInfo(Action):
-    def __init__(self, *, msg: Any, **kwargs: Any) -> None:
+    def __init__(self, *, msg: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.__msg = normalize_to_list_of_substitutions(msg)
 

@@ -12,11 +12,13 @@ if TYPE_CHECKING:
     from launch.frontend.entity import Entity
     from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_action('reset')
 class ResetLaunchConfigurations(Action):
-    def __init__(self, launch_configurations: dict[Any, Any] | None = None, **kwargs: Any
+    def __init__(self, launch_configurations: dict[SomeSubstitutionsType, SomeSubstitutionsType]
+                 | None = None, **kwargs: Any
                  ) -> None:
         super().__init__(**kwargs)
         self.__launch_configurations = launch_configurations

@@ -18,7 +18,7 @@ if TYPE_CHECKING:
 
 @expose_action('shutdown')
 class Shutdown(EmitEvent):
-    def __init__(self, *, reason: Any = 'reason not given', **kwargs: Any) -> None:
+    def __init__(self, *, reason: str = 'reason not given', **kwargs: Any) -> None:
         super().__init__(event=ShutdownEvent(reason=reason), **kwargs)
 
     @classmethod

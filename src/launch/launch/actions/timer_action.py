@@ -27,12 +27,14 @@ if TYPE_CHECKING:
     from launch.frontend.parser import Parser
     from launch.launch_context import LaunchContext
     from launch.launch_description_entity import LaunchDescriptionEntity
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_action('timer')
 class TimerAction(Action):
-    def __init__(self, *, period: Any, actions: Iterable[LaunchDescriptionEntity],
-                 cancel_on_shutdown: Any = True, **kwargs: Any) -> None:
+    def __init__(self, *, period: float | SomeSubstitutionsType,
+                 actions: Iterable[LaunchDescriptionEntity],
+                 cancel_on_shutdown: bool | SomeSubstitutionsType = True, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         ensure_argument_type(period, [*SomeSubstitutionsType_types_tuple, float, int],
                              'period', 'TimerAction')

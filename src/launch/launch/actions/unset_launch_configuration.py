@@ -9,11 +9,12 @@ from launch.utilities import normalize_to_list_of_substitutions, perform_substit
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
     from launch.substitution import Substitution
 
 
 class UnsetLaunchConfiguration(Action):
-    def __init__(self, name: Any, **kwargs: Any) -> None:
+    def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.__name = normalize_to_list_of_substitutions(name)
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from launch.condition import Condition
 from launch.conditions.evaluate_condition_expression_impl import evaluate_condition_expression
@@ -10,10 +10,11 @@ from launch.utilities import normalize_to_list_of_substitutions
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 class IfCondition(Condition):
-    def __init__(self, predicate_expression: Any) -> None:
+    def __init__(self, predicate_expression: SomeSubstitutionsType) -> None:
         self._predicate_expression = normalize_to_list_of_substitutions(predicate_expression)
         super().__init__(predicate=self._predicate_func)
 

@@ -6,13 +6,14 @@ Deprecated upstream in favour of IfCondition(EqualsSubstitution(...)); kept, wit
 from __future__ import annotations
 
 import warnings
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from launch.condition import Condition
 from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 _DEPRECATION = (
     "The 'LaunchConfigurationEquals' and 'LaunchConfigurationNotEquals' Conditions are  "
@@ -22,7 +23,8 @@ _DEPRECATION = (
 
 
 class LaunchConfigurationEquals(Condition):
-    def __init__(self, launch_configuration_name: str, expected_value: Any) -> None:
+    def __init__(self, launch_configuration_name: str,
+                 expected_value: SomeSubstitutionsType | None) -> None:
         warnings.warn(_DEPRECATION, UserWarning, stacklevel=2)
         self._name = launch_configuration_name
         self._expected = (None if expected_value is None

@@ -21,6 +21,7 @@ from launch.utilities import normalize_to_list_of_substitutions, perform_substit
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
     from launch.substitution import Substitution
 
 _counter_lock = threading.Lock()
@@ -35,10 +36,13 @@ def _pairs(mapping: dict[Any, Any] | None) -> list[tuple[list, list]] | None:
 
 
 class Executable:
-    def __init__(self, *, cmd: Iterable[Any], prefix: Any = None, name: Any = None,
-                 cwd: Any = None, env: dict[Any, Any] | None = None,
-                 additional_env: dict[Any, Any] | None = None,
-                 arguments: Iterable[Any] | None = None) -> None:
+    def __init__(self, *, cmd: Iterable[SomeSubstitutionsType],
+                 prefix: SomeSubstitutionsType | None = None,
+                 name: SomeSubstitutionsType | None = None,
+                 cwd: SomeSubstitutionsType | None = None,
+                 env: dict[SomeSubstitutionsType, SomeSubstitutionsType] | None = None,
+                 additional_env: dict[SomeSubstitutionsType, SomeSubstitutionsType] | None = None,
+                 arguments: Iterable[SomeSubstitutionsType] | None = None) -> None:
         if isinstance(cmd, (str, os.PathLike)):
             cmd = [cmd]
         self.__cmd = [normalize_to_list_of_substitutions(part) for part in cmd]

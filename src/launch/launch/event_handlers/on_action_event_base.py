@@ -15,12 +15,17 @@ from launch.event_handler import BaseEventHandler
 from launch.launch_description_entity import LaunchDescriptionEntity
 
 if TYPE_CHECKING:
+    from launch.action import Action
     from launch.launch_context import LaunchContext
+    from launch.some_entities_type import SomeEntitiesType
 
 
 class OnActionEventBase(BaseEventHandler):
-    def __init__(self, *, action_matcher: Any, on_event: Any, target_event_cls: type,
-                 target_action_cls: type, **kwargs: Any) -> None:
+    def __init__(self, *, action_matcher: Callable[[Action], bool] | Action | None,
+                 on_event: SomeEntitiesType | Callable[[Event, LaunchContext],
+                                                       SomeEntitiesType | None],
+                 target_event_cls: type[Event], target_action_cls: type[Action],
+                 **kwargs: Any) -> None:
         if not issubclass(target_event_cls, Event):
             raise TypeError("'target_event_cls' must be a subclass of 'Event'")
         if not (action_matcher is None or isinstance(action_matcher, target_action_cls)

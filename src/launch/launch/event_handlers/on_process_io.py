@@ -7,15 +7,18 @@ from typing import TYPE_CHECKING, Any
 
 from launch.event_handlers.on_action_event_base import OnActionEventBase
 from launch.events.process.process_io import ProcessIO
+from launch.some_entities_type import SomeEntitiesType
 
 if TYPE_CHECKING:
+    from launch.action import Action
     from launch.launch_context import LaunchContext
 
-IOCallback = Callable[[ProcessIO], Any]
+IOCallback = Callable[[ProcessIO], SomeEntitiesType | None]
 
 
 class OnProcessIO(OnActionEventBase):
-    def __init__(self, *, target_action: Any = None, on_stdin: IOCallback | None = None,
+    def __init__(self, *, target_action: Callable[[Action], bool] | Action | None = None,
+                 on_stdin: IOCallback | None = None,
                  on_stdout: IOCallback | None = None, on_stderr: IOCallback | None = None,
                  **kwargs: Any) -> None:
         from launch.actions.execute_local import ExecuteLocal

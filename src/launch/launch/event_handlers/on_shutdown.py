@@ -13,6 +13,7 @@ from launch.utilities import is_a_subclass
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_entities_type import SomeEntitiesType
 
 
 def gen_handler(entities: Any) -> Callable[[Event, LaunchContext], Any]:
@@ -23,7 +24,9 @@ def gen_handler(entities: Any) -> Callable[[Event, LaunchContext], Any]:
 
 
 class OnShutdown(BaseEventHandler):
-    def __init__(self, *, on_shutdown: Any, **kwargs: Any) -> None:
+    def __init__(self, *, on_shutdown: SomeEntitiesType | Callable[[Shutdown, LaunchContext],
+                                                          SomeEntitiesType | None],
+                 **kwargs: Any) -> None:
         super().__init__(matcher=lambda event: is_a_subclass(event, Shutdown), **kwargs)
         if callable(on_shutdown) and not isinstance(on_shutdown, LaunchDescriptionEntity):
             self.__on_shutdown = on_shutdown

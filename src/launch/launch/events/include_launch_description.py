@@ -1,14 +1,19 @@
 """IncludeLaunchDescription: asks the running launch to visit a launch description."""
 
-from typing import Any
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
 
 from launch.event import Event
+
+if TYPE_CHECKING:
+    from launch.launch_description import LaunchDescription
 
 
 class IncludeLaunchDescription(Event):
     name = 'launch.events.IncludeLaunchDescription'
 
-    def __init__(self, launch_description: Any) -> None:
+    def __init__(self, launch_description: LaunchDescription) -> None:
         self.__launch_description = launch_description
 
     @property

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from launch.frontend.parser import Parser
 from launch.launch_description_source import LaunchDescriptionSource
@@ -12,10 +12,11 @@ from launch.launch_description_sources.frontend_launch_file_utilities import (
 
 if TYPE_CHECKING:
     from launch.launch_description import LaunchDescription
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 class FrontendLaunchDescriptionSource(LaunchDescriptionSource):
-    def __init__(self, launch_file_path: Any, *,
+    def __init__(self, launch_file_path: SomeSubstitutionsType, *,
                  method: str = 'interpreted frontend launch file',
                  parser: type[Parser] = Parser) -> None:
         super().__init__(None, launch_file_path, method)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from launch.launch_description_source import LaunchDescriptionSource
 from launch.launch_description_sources.python_launch_file_utilities import (
@@ -11,10 +11,11 @@ from launch.launch_description_sources.python_launch_file_utilities import (
 
 if TYPE_CHECKING:
     from launch.launch_description import LaunchDescription
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 class PythonLaunchDescriptionSource(LaunchDescriptionSource):
-    def __init__(self, launch_file_path: Any) -> None:
+    def __init__(self, launch_file_path: SomeSubstitutionsType) -> None:
         super().__init__(None, launch_file_path, 'interpreted python launch file')
 
     def _get_launch_description(self, location: str) -> LaunchDescription:

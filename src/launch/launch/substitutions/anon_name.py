@@ -16,11 +16,12 @@ from launch.utilities import normalize_to_list_of_substitutions, perform_substit
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_substitution('anon')
 class AnonName(Substitution):
-    def __init__(self, name: Any) -> None:
+    def __init__(self, name: SomeSubstitutionsType) -> None:
         self.__name = normalize_to_list_of_substitutions(name)
 
     @classmethod

@@ -18,6 +18,7 @@ from launch.utilities.type_utils import perform_typed_substitution
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 def _as_bool(context: LaunchContext, value: list[Substitution]) -> bool:
@@ -33,7 +34,7 @@ def _text(result: bool) -> str:
 
 @expose_substitution('not')
 class NotSubstitution(Substitution):
-    def __init__(self, value: Any) -> None:
+    def __init__(self, value: SomeSubstitutionsType) -> None:
         self.__value = normalize_to_list_of_substitutions(value)
 
     @classmethod
@@ -93,7 +94,7 @@ class OrSubstitution(_BinarySubstitution):
 class _ManySubstitution(Substitution):
     _reduce: Callable[[Iterable[bool]], bool]
 
-    def __init__(self, *args: Any) -> None:
+    def __init__(self, *args: SomeSubstitutionsType) -> None:
         self.__args = [normalize_to_list_of_substitutions(arg) for arg in args]
 
     @classmethod
@@ -116,7 +117,7 @@ class _ManySubstitution(Substitution):
 class AnySubstitution(_ManySubstitution):
     _reduce = any
 
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
+    def __init__(self, *args: SomeSubstitutionsType, **kwargs: Any) -> None:
         # The front end hands the operands over as `args=[...]`.
         super().__init__(*args, *kwargs.pop('args', ()))
 
@@ -125,5 +126,5 @@ class AnySubstitution(_ManySubstitution):
 class AllSubstitution(_ManySubstitution):
     _reduce = all
 
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
+    def __init__(self, *args: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(*args, *kwargs.pop('args', ()))

@@ -15,13 +15,15 @@ from launch.utilities import normalize_to_list_of_substitutions, perform_substit
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 _ON_STDERR = ('fail', 'ignore', 'warn', 'capture')
 
 
 @expose_substitution('command')
 class Command(Substitution):
-    def __init__(self, command: Any, *, on_stderr: Any = 'fail') -> None:
+    def __init__(self, command: SomeSubstitutionsType, *,
+                 on_stderr: SomeSubstitutionsType = 'fail') -> None:
         self.__command = normalize_to_list_of_substitutions(command)
         self.__on_stderr = normalize_to_list_of_substitutions(on_stderr)
 

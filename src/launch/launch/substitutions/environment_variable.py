@@ -12,11 +12,13 @@ from launch.utilities import normalize_to_list_of_substitutions, perform_substit
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_substitution('env')
 class EnvironmentVariable(Substitution):
-    def __init__(self, name: Any, *, default_value: Any = None) -> None:
+    def __init__(self, name: SomeSubstitutionsType, *,
+                 default_value: SomeSubstitutionsType | None = None) -> None:
         self.__name = normalize_to_list_of_substitutions(name)
         self.__default_value = (None if default_value is None
                                 else normalize_to_list_of_substitutions(default_value))

@@ -12,11 +12,12 @@ from launch.utilities import normalize_to_list_of_substitutions, perform_substit
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_substitution('file-content')
 class FileContent(Substitution):
-    def __init__(self, path: Any) -> None:
+    def __init__(self, path: SomeSubstitutionsType) -> None:
         self.__path = normalize_to_list_of_substitutions(path)
 
     @classmethod

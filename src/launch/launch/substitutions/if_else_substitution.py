@@ -12,11 +12,14 @@ from launch.utilities import normalize_to_list_of_substitutions, perform_substit
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_substitution('if')
 class IfElseSubstitution(Substitution):
-    def __init__(self, condition: Any, if_value: Any = '', else_value: Any = '') -> None:
+    def __init__(self, condition: SomeSubstitutionsType,
+                 if_value: SomeSubstitutionsType = '',
+                 else_value: SomeSubstitutionsType = '') -> None:
         if if_value == else_value == '':
             raise RuntimeError('One of if_value and else_value must be specified')
         self._condition = normalize_to_list_of_substitutions(condition)

@@ -12,12 +12,16 @@ from launch.substitutions.substitution_failure import SubstitutionFailure
 from launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 if TYPE_CHECKING:
+    from collections.abc import Iterable
+
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_substitution('var')
 class LaunchConfiguration(Substitution):
-    def __init__(self, variable_name: Any, *, default: Any = None) -> None:
+    def __init__(self, variable_name: SomeSubstitutionsType, *,
+                 default: Any | Iterable[Any] | None = None) -> None:
         self.__variable_name = normalize_to_list_of_substitutions(variable_name)
         self.__default: list[Substitution] | None = None
         if default is not None:

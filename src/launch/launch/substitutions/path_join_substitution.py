@@ -14,7 +14,7 @@ if TYPE_CHECKING:
 
 
 class PathJoinSubstitution(Substitution):
-    def __init__(self, substitutions: Iterable[Any]) -> None:
+    def __init__(self, substitutions: Iterable[str | Substitution]) -> None:
         self.__substitutions = normalize_to_list_of_substitutions(substitutions)
 
     @property

@@ -21,11 +21,13 @@ from launch.utilities import (
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_substitution('eval')
 class PythonExpression(Substitution):
-    def __init__(self, expression: Any, python_modules: Any = ('math',)) -> None:
+    def __init__(self, expression: SomeSubstitutionsType,
+                 python_modules: SomeSubstitutionsType = ('math',)) -> None:
         allowed = (str, Substitution, collections.abc.Iterable)
         ensure_argument_type(expression, allowed, 'expression', 'PythonExpression')
         ensure_argument_type(python_modules, allowed, 'python_modules', 'PythonExpression')

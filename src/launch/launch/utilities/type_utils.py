@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 import yaml
 
+from launch.some_substitutions_type import SomeSubstitutionsType
 from launch.substitution import Substitution
 from launch.utilities.ensure_argument_type_impl import ensure_argument_type
 from launch.utilities.normalize_to_list_of_substitutions_impl import (
@@ -27,22 +28,32 @@ ScalarTypesTuple = (int, float, bool, str)
 _TypingList = typing.List  # noqa: UP006
 ListTypesTuple = (_TypingList[int], _TypingList[float], _TypingList[bool], _TypingList[str])
 AllowedTypesTuple = ScalarTypesTuple + ListTypesTuple
-ScalarTypesType = type
-ListTypesType = Any
-AllowedTypesType = Any
+# The aliases below are for annotations only (isinstance checks use the *Tuple ones above).
+ScalarTypesType = type[int | float | bool | str]
+ListTypesType = type[list[int] | list[float] | list[bool] | list[str]]
+AllowedTypesType = ScalarTypesType | ListTypesType
 ScalarValueType = int | float | bool | str
 ListValueType = list[int] | list[float] | list[bool] | list[str]
-SequenceValueType = collections.abc.Sequence
+SequenceValueType = (collections.abc.Sequence[int] | collections.abc.Sequence[float]
+                     | collections.abc.Sequence[bool] | collections.abc.Sequence[str])
 AllowedValueType = ScalarValueType | SequenceValueType
-SomeScalarType = Any
-SomeSequenceType = Any
-SomeValueType = Any
-NormalizedScalarType = Any
-NormalizedSequenceType = Any
-NormalizedValueType = Any
-StrSomeScalarType = Any
-StrSomeSequenceType = Any
-StrSomeValueType = Any
+# A typed value as a user writes it: the value itself, or substitutions that yield its text.
+SomeScalarType = SomeSubstitutionsType | ScalarValueType
+SomeSequenceType = (collections.abc.Sequence[int | SomeSubstitutionsType]
+                    | collections.abc.Sequence[float | SomeSubstitutionsType]
+                    | collections.abc.Sequence[bool | SomeSubstitutionsType]
+                    | collections.abc.Sequence[str | SomeSubstitutionsType])
+SomeValueType = SomeScalarType | SomeSequenceType
+# The same after normalize_typed_substitution(): substitutions as lists of Substitution.
+NormalizedScalarType = list[Substitution] | ScalarValueType
+NormalizedSequenceType = (list[int | list[Substitution]] | list[float | list[Substitution]]
+                          | list[bool | list[Substitution]] | list[str | list[Substitution]])
+NormalizedValueType = NormalizedScalarType | NormalizedSequenceType
+# Substitutions embedded in strings ('$(var x)'), as the front ends hand them over.
+StrSomeScalarType = SomeScalarType
+StrSomeSequenceType = (collections.abc.Sequence[int | str] | collections.abc.Sequence[float | str]
+                       | collections.abc.Sequence[bool | str] | collections.abc.Sequence[str])
+StrSomeValueType = StrSomeScalarType | StrSomeSequenceType
 
 _TYPES_ALLOWED = ('int, float, str, bool, List[int], List[float], List[str], List[bool]')
 

@@ -13,11 +13,14 @@ from launch_ros.actions.node import Node
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
+
+    from launch_ros.descriptions import ComposableNode
 
 
 class ComposableNodeContainer(Node):
-    def __init__(self, *, name: Any, namespace: Any,
-                 composable_node_descriptions: list[Any] | None = None,
+    def __init__(self, *, name: SomeSubstitutionsType, namespace: SomeSubstitutionsType,
+                 composable_node_descriptions: list[ComposableNode] | None = None,
                  **kwargs: Any) -> None:
         super().__init__(name=name, namespace=namespace, **kwargs)
         self.__descriptions = list(composable_node_descriptions or [])

@@ -25,6 +25,9 @@ from launch_ros.utilities import (
 
 if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
+
+    from launch_ros.actions.composable_node_container import ComposableNodeContainer
 
 NO_CONTAINERS = ('{what}: composable nodes need a component container (rclcpp_components), '
                  'which this workspace does not have; start the nodes with '
@@ -33,7 +36,8 @@ NO_CONTAINERS = ('{what}: composable nodes need a component container (rclcpp_co
 
 class LoadComposableNodes(Action):
     def __init__(self, *, composable_node_descriptions: list[ComposableNode],
-                 target_container: Any, **kwargs: Any) -> None:
+                 target_container: SomeSubstitutionsType | ComposableNodeContainer,
+                 **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.__descriptions = list(composable_node_descriptions)
         self.__target_container = target_container

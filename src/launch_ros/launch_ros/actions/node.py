@@ -38,8 +38,14 @@ from launch_ros.utilities import (
 )
 
 if TYPE_CHECKING:
+    from collections.abc import Iterable
+
     from launch.frontend import Entity, Parser
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
+
+    from launch_ros.parameters_type import SomeParameters
+    from launch_ros.remap_rule_type import SomeRemapRules
 
 _NAME = re.compile(r'^[A-Za-z_][A-Za-z0-9_]*$')
 _NAMESPACE = re.compile(r'^(/[A-Za-z_][A-Za-z0-9_]*)*$|^/$')
@@ -139,9 +145,15 @@ class Node(ExecuteProcess):
             kwargs['parameters'] = cls.parse_nested_parameters(parameters, parser)
         return cls, kwargs
 
-    def __init__(self, *, executable: Any, package: Any = None, name: Any = None,
-                 namespace: Any = None, exec_name: Any = None, parameters: Any = None,
-                 remappings: Any = None, ros_arguments: Any = None, arguments: Any = None,
+    def __init__(self, *, executable: SomeSubstitutionsType,
+                 package: SomeSubstitutionsType | None = None,
+                 name: SomeSubstitutionsType | None = None,
+                 namespace: SomeSubstitutionsType | None = None,
+                 exec_name: SomeSubstitutionsType | None = None,
+                 parameters: SomeParameters | None = None,
+                 remappings: SomeRemapRules | None = None,
+                 ros_arguments: Iterable[SomeSubstitutionsType] | None = None,
+                 arguments: Iterable[SomeSubstitutionsType] | None = None,
                  **kwargs: Any) -> None:
         cmd: list[Any] = [executable if package is None
                           else ExecutableInPackage(package=package, executable=executable)]

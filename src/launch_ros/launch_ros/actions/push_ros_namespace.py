@@ -15,6 +15,7 @@ from launch_ros.utilities import make_namespace_absolute, prefix_namespace
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_action('push_ros_namespace')
@@ -26,7 +27,7 @@ class PushROSNamespace(Action):
         kwargs['namespace'] = parser.parse_substitution(entity.get_attr('namespace'))
         return cls, kwargs
 
-    def __init__(self, namespace: Any, **kwargs: Any) -> None:
+    def __init__(self, namespace: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.__namespace = normalize_to_list_of_substitutions(namespace)
 

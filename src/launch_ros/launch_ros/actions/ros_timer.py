@@ -19,6 +19,8 @@ from launch_ros.ros_adapters import get_ros_node
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser
     from launch.launch_context import LaunchContext
+    from launch.launch_description_entity import LaunchDescriptionEntity
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_action('ros_timer')
@@ -28,7 +30,8 @@ class ROSTimer(TimerAction):
         # TimerAction reads the period and the nested actions.
         return cls, super().parse(entity, parser)[1]
 
-    def __init__(self, *, period: Any, actions: Iterable[Any], **kwargs: Any) -> None:
+    def __init__(self, *, period: float | SomeSubstitutionsType,
+                 actions: Iterable[LaunchDescriptionEntity], **kwargs: Any) -> None:
         ensure_argument_type(period, (float, int, str, list, tuple, *_substitution_types()),
                              'period', 'ROSTimer')
         actions = list(actions)

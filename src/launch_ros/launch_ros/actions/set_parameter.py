@@ -13,6 +13,9 @@ from launch_ros.utilities import evaluate_parameter_dict, normalize_parameter_di
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
+
+    from launch_ros.parameters_type import SomeParameterValue
 
 
 def append_configuration(context: Any, key: str, *items: Any) -> None:
@@ -29,7 +32,8 @@ class SetParameter(Action):
         kwargs['value'] = parser.parse_substitution(entity.get_attr('value'))
         return cls, kwargs
 
-    def __init__(self, name: Any, value: Any, **kwargs: Any) -> None:
+    def __init__(self, name: SomeSubstitutionsType, value: SomeParameterValue,
+                 **kwargs: Any) -> None:
         super().__init__(**kwargs)
         name = tuple(normalize_to_list_of_substitutions(name))
         self.__param_dict = normalize_parameter_dict({name: value})

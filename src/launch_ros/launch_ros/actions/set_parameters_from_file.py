@@ -13,6 +13,7 @@ from launch_ros.actions.set_parameter import append_configuration
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_action('set_parameters_from_file')
@@ -23,7 +24,7 @@ class SetParametersFromFile(Action):
         kwargs['filename'] = parser.parse_substitution(entity.get_attr('filename'))
         return cls, kwargs
 
-    def __init__(self, filename: Any, **kwargs: Any) -> None:
+    def __init__(self, filename: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self._input_file = normalize_to_list_of_substitutions(filename)
 

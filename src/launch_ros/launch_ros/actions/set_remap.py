@@ -13,6 +13,7 @@ from launch_ros.actions.set_parameter import append_configuration
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_action('set_remap')
@@ -24,7 +25,8 @@ class SetRemap(Action):
         kwargs['dst'] = parser.parse_substitution(entity.get_attr('to'))
         return cls, kwargs
 
-    def __init__(self, src: Any, dst: Any, **kwargs: Any) -> None:
+    def __init__(self, src: SomeSubstitutionsType, dst: SomeSubstitutionsType,
+                 **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.__src = normalize_to_list_of_substitutions(src)
         self.__dst = normalize_to_list_of_substitutions(dst)

@@ -13,6 +13,7 @@ from launch.utilities import normalize_to_list_of_substitutions, perform_substit
 if TYPE_CHECKING:
     from launch.frontend import Entity, Parser
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 def _current_log_dir() -> str:
@@ -31,7 +32,7 @@ class SetROSLogDir(Action):
         kwargs['new_log_dir'] = parser.parse_substitution(entity.get_attr('new_log_dir'))
         return cls, kwargs
 
-    def __init__(self, new_log_dir: Any, **kwargs: Any) -> None:
+    def __init__(self, new_log_dir: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.__log_dir = normalize_to_list_of_substitutions(new_log_dir)
 

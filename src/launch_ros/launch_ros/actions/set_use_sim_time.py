@@ -24,7 +24,7 @@ class SetUseSimTime(Action):
         kwargs['value'] = parser.parse_substitution(entity.get_attr('value'))
         return cls, kwargs
 
-    def __init__(self, value: Any, **kwargs: Any) -> None:
+    def __init__(self, value: bool, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.__value = value
 

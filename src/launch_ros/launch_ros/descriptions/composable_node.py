@@ -2,17 +2,28 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from launch.utilities import normalize_to_list_of_substitutions
 
 from launch_ros.utilities import normalize_parameters, normalize_remap_rules
 
+if TYPE_CHECKING:
+    from launch.condition import Condition
+    from launch.some_substitutions_type import SomeSubstitutionsType
+
+    from launch_ros.parameters_type import SomeParameters
+    from launch_ros.remap_rule_type import SomeRemapRules
+
 
 class ComposableNode:
-    def __init__(self, *, package: Any, plugin: Any, name: Any = None, namespace: Any = None,
-                 parameters: Any = None, remappings: Any = None, extra_arguments: Any = None,
-                 condition: Any = None) -> None:
+    def __init__(self, *, package: SomeSubstitutionsType, plugin: SomeSubstitutionsType,
+                 name: SomeSubstitutionsType | None = None,
+                 namespace: SomeSubstitutionsType | None = None,
+                 parameters: SomeParameters | None = None,
+                 remappings: SomeRemapRules | None = None,
+                 extra_arguments: SomeParameters | None = None,
+                 condition: Condition | None = None) -> None:
         self.__package = normalize_to_list_of_substitutions(package)
         self.__plugin = normalize_to_list_of_substitutions(plugin)
         self.__name = None if name is None else normalize_to_list_of_substitutions(name)

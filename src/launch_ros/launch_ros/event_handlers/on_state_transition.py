@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from launch.event import Event
 from launch.event_handler import EventHandler
@@ -11,12 +11,16 @@ from launch.event_handler import EventHandler
 from launch_ros.actions.lifecycle_node import LifecycleNode
 from launch_ros.events.lifecycle import StateTransition
 
+if TYPE_CHECKING:
+    from launch.some_entities_type import SomeEntitiesType
+
 
 class OnStateTransition(EventHandler):
     """Matches StateTransition events by node action, transition and states (each None: any);
     a `matcher` given replaces all of them."""
 
-    def __init__(self, *, entities: Any, target_lifecycle_node: LifecycleNode | None = None,
+    def __init__(self, *, entities: SomeEntitiesType,
+                 target_lifecycle_node: LifecycleNode | None = None,
                  transition: str | None = None, start_state: str | None = None,
                  goal_state: str | None = None,
                  matcher: Callable[[Event], bool] | None = None, **kwargs: Any) -> None:

@@ -12,7 +12,10 @@ from launch.utilities import normalize_to_list_of_substitutions, perform_substit
 from launch import Substitution
 
 if TYPE_CHECKING:
+    from collections.abc import Iterable
+
     from launch.launch_context import LaunchContext
+    from launch.some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_substitution('param')
@@ -26,7 +29,8 @@ class Parameter(Substitution):
             kwargs['default'] = data[1]
         return cls, kwargs
 
-    def __init__(self, name: Any, default: Any = None) -> None:
+    def __init__(self, name: SomeSubstitutionsType,
+                 default: Any | Iterable[Any] | None = None) -> None:
         self.__name = normalize_to_list_of_substitutions(name)
         self.__default = None if default is None else normalize_to_list_of_substitutions(
             default)

@@ -2,15 +2,18 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from launch.event import Event
+
+if TYPE_CHECKING:
+    from launch.actions.execute_process import ExecuteProcess
 
 
 class RunningProcessEvent(Event):
     name = 'launch.events.process.RunningProcessEvent'
 
-    def __init__(self, *, action: Any, name: str, cmd: list[str], cwd: str | None,
+    def __init__(self, *, action: ExecuteProcess, name: str, cmd: list[str], cwd: str | None,
                  env: dict[str, str] | None, pid: int) -> None:
         self.__action = action
         self.__name = name

@@ -3,10 +3,13 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 from launch.event import Event
 from lifecycle_msgs.msg import State, Transition
+
+if TYPE_CHECKING:
+    from launch_ros.actions.lifecycle_node import LifecycleNode
 
 # The transitions a user may request (lifecycle_msgs' others are internal results).
 _TRANSITIONS = ('CREATE', 'CONFIGURE', 'CLEANUP', 'ACTIVATE', 'DEACTIVATE',
@@ -24,7 +27,7 @@ class ChangeState(Event):
         getattr(Transition, f'TRANSITION_{name}'): f'TRANSITION_{name}' for name in _TRANSITIONS}
     valid_states: ClassVar[dict[int, str]] = {getattr(State, name): name for name in _STATES}
 
-    def __init__(self, *, lifecycle_node_matcher: Callable[[Any], bool],
+    def __init__(self, *, lifecycle_node_matcher: Callable[[LifecycleNode], bool],
                  transition_id: int) -> None:
         super().__init__()
         if transition_id not in self.valid_transitions:
