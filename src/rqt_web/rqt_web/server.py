@@ -71,7 +71,9 @@ async def page(request: web.Request) -> web.Response:
 async def static_file(request: web.Request) -> web.FileResponse:
     name = request.match_info['name']
     path = STATIC / name
-    if '/' in name or not path.is_file():
+    # Folders too (the RViz page's ES modules are static/rviz/...), nothing outside STATIC.
+    # .js goes out as text/javascript (mimetypes), which module scripts require.
+    if name.startswith('/') or '..' in name.split('/') or not path.is_file():
         raise web.HTTPNotFound()
     return web.FileResponse(path)
 
@@ -503,7 +505,7 @@ def make_app(token: str, bind_host: str, port_holder: dict) -> web.Application:
         web.get('/api/interface', interface), web.post('/api/service/call', call_service),
         web.post('/api/topic/publish', publish), web.get('/api/parameters', parameters),
         web.post('/api/parameters/set', set_parameter), web.get('/ws', websocket),
-        web.get('/static/{name}', static_file), web.get('/vendor/{name:.+}', vendor_file),
+        web.get('/static/{name:.+}', static_file), web.get('/vendor/{name:.+}', vendor_file),
         web.get('/{page}', page)])
     tf_feed.add_routes(app)  # /api/tf/...: the TF Tree and RViz pages' data
     rviz.add_routes(app)  # /api/rviz/...: .rviz files, robot description, meshes
