@@ -89,7 +89,10 @@ class AmclNode(LifecycleNode):
             self.get_logger().error(str(error))
             return TransitionCallbackReturn.FAILURE
         self.tf_buffer = Buffer()
-        self.tf_listener = TransformListener(self.tf_buffer, self)
+        # On a thread of its own, as upstream's listener: the scan callback waits for the
+        # odometry at the scan's stamp, which must keep arriving meanwhile (on the node's
+        # own executor /tf starved behind the scans and the buffer stopped at 1.3 s).
+        self.tf_listener = TransformListener(self.tf_buffer, self, spin_thread=True)
         self.tf_broadcaster = TransformBroadcaster(self)
         self._pose_pub = self.create_lifecycle_publisher(
             PoseWithCovarianceStamped, 'amcl_pose', LATCHED)
@@ -117,10 +120,13 @@ class AmclNode(LifecycleNode):
                                              p['initial_pose.yaw']]), INITIAL_COV)
         return result
 
-
-
-
     def release(self) -> None:
+        listener = getattr(self, 'tf_listener', None)
+        if listener is not None:  # its thread first, then its node
+            listener._stop_spinning()
+            listener.unregister()
+            listener.node.destroy_node()
+            self.tf_listener = None
         for handle in self._handles:
             if hasattr(handle, 'srv_type'):
                 self.destroy_service(handle)
