@@ -1,0 +1,1 @@
+"""Nav2 planner_server in Python."""
