@@ -228,3 +228,35 @@ def test_unknown_planner_plugin_fails_configure(launch, tmp_path):
     planner.wait_for_output('Auto-starting node planner_server failed to configure!')
     assert planner.popen.poll() is None
     assert 'Traceback' not in planner.output
+
+
+def test_new_goal_preempts_and_cancel_ends_a_waiting_goal(launch, ros_env, tmp_path):
+    """No map yet: goals wait for the costmap, so the second finds the first running."""
+    launch('tf2_ros', 'static_transform_publisher', '--frame-id', 'map', '--child-frame-id',
+           'base_footprint')
+    planner = launch('nav2_planner', 'planner_server', '--ros-args', '--params-file',
+                     str(write_params(tmp_path, 'nav2_navfn_planner::NavfnPlanner')),
+                     '-p', 'autostart_node:=true')
+    planner.wait_for_output(r'\[planner_server\]: Activating plugin GridBased', timeout=30.0)
+    probe = TestNode(int(ros_env['ROS_DOMAIN_ID']))
+    client = ActionClient(probe.node, ComputePathToPose, '/compute_path_to_pose')
+    try:
+        assert client.wait_for_server(timeout_sec=15.0)
+        handles = []
+        for x in (3.0, 3.5):
+            future = client.send_goal_async(ComputePathToPose.Goal(goal=pose(x, 1.0)))
+            probe.spin_until(future.done, 10.0, 'the goal to be answered')
+            assert future.result().accepted
+            handles.append(future.result())
+        first = handles[0].get_result_async()
+        probe.spin_until(first.done, 5.0, 'the first goal to end')
+        assert first.result().status == GoalStatus.STATUS_ABORTED
+        planner.wait_for_output('Preempting the goal with the new goal')
+        cancel = handles[1].cancel_goal_async()
+        second = handles[1].get_result_async()
+        probe.spin_until(lambda: cancel.done() and second.done(), 5.0, 'the cancel')
+        assert second.result().status == GoalStatus.STATUS_CANCELED
+    finally:
+        client.destroy()
+        probe.close()
+    assert 'Traceback' not in planner.output

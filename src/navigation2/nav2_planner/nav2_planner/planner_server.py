@@ -167,6 +167,10 @@ class PlannerServer(LifecycleNode):
             try:
                 plan = self._plan(handle, handle.request, through_poses)
             except exceptions.PlannerCancelled:
+                if handle is not self._latest_goal:
+                    self.get_logger().info('Preempting the goal with the new goal')
+                    handle.abort()
+                    return result
                 self.get_logger().info('Goal was canceled. Canceling planning action.')
                 handle.canceled()
                 return result
@@ -247,7 +251,7 @@ class PlannerServer(LifecycleNode):
     def _wait_for_costmap(self, handle: Any) -> None:
         deadline = time.monotonic() + COSTMAP_WAIT
         while not self.costmap_ros.is_current():
-            if handle.is_cancel_requested:
+            if handle.is_cancel_requested or handle is not self._latest_goal:
                 raise exceptions.PlannerCancelled('cancelled')
             if time.monotonic() > deadline:
                 raise exceptions.PlannerException(
