@@ -37,6 +37,18 @@ def start_bridge(ros_env: dict[str, str], log: Path) -> tuple[RosProcess, str]:
     return bridge, f'ws://127.0.0.1:{port}'
 
 
+def wait_for_parameter_services(driver: Driver, nodes: list[str]) -> None:
+    """Until the bridge advertises the nodes' parameter services: its own graph, which decides
+    whom a request for all parameters asks, has then met them (a fresh bridge knows nobody)."""
+    wanted = {f'{node}/{kind}' for node in nodes for kind in ('list_parameters', 'get_parameters')}
+
+    def advertised() -> set[str]:
+        return {name for event in driver.events if event.get('event') == 'advertiseServices'
+                for name in event['names']}
+
+    wait_until(lambda: wanted <= advertised(), 15, f'the bridge to advertise {sorted(wanted)}')
+
+
 def all_parameters(driver: Driver, request_id: str) -> tuple[float, list[dict]]:
     """(seconds to the answer, the parameters) of a request for all parameters."""
     started = time.monotonic()
@@ -73,6 +85,7 @@ def test_all_parameters_beside_the_simulation_rviz_page_and_daemon(
                 drivers.append(driver)
                 assert driver.wait(lambda e: e.get('event') == 'open', 'the connection')[
                     'protocol'] == served
+                wait_for_parameter_services(driver, ['/mujoco_sim', '/robot_state_publisher'])
                 seconds, parameters = all_parameters(driver, f'{served}-1')
                 assert seconds < 1.0, (served, seconds, bridge.output)
                 got = {p['name']: p['value'] for p in parameters}
@@ -182,6 +195,7 @@ def test_a_node_that_never_answers_is_logged_once_and_not_asked_again(
             wait_until(lambda: {'/stuck', '/answering'} <= {
                 f"{ns.rstrip('/')}/{n}"
                 for n, ns in answering.node.get_node_names_and_namespaces()}, 10, 'the nodes')
+            wait_for_parameter_services(driver, ['/stuck', '/answering'])
             seconds, parameters = all_parameters(driver, 'first')
             assert 2.5 < seconds < 5.0, seconds  # the stuck node's 3 s limit, not more
             assert {p['name']: p['value'] for p in parameters}['/answering.speed'] == 2.5
