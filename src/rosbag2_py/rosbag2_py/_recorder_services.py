@@ -13,6 +13,8 @@ from typing import Any
 
 from rosbag2_py._metadata_io import BagError, one_line
 
+ACK_BOUND = 1.0  # seconds the last write_split event may wait for its subscribers
+
 
 class RecorderServices:
     def __init__(self, recorder: Any) -> None:
@@ -36,6 +38,10 @@ class RecorderServices:
         self.recorder.writer.on_split = None
         for service in self.services:
             node.destroy_service(service)
+        # The closing split's event goes out as the process ends: give subscribers up to
+        # ACK_BOUND to take it, or a destroyed writer drops it (seen under load).
+        from rclpy.duration import Duration
+        self.events.wait_for_all_acked(Duration(seconds=ACK_BOUND))
         node.destroy_publisher(self.events)
 
     def _publish_split(self, closed: str, opened: str) -> None:
