@@ -13,6 +13,14 @@ The new subscription is made before the old one goes, so nothing published meanw
 lost; a message both deliver (or a transient-local history that repeats what the old one
 printed) is passed on once, recognised by its source timestamp and publication sequence
 number.
+
+A replacement subscription catches up on the publisher's history while the old one has already
+printed it; a history sample the writer drops meanwhile (KEEP_LAST: the next publish pushes it
+out before the new reader has fetched it) comes as a message-lost event for a message the echo
+showed. So a replacement's lost events until CATCH_UP after its first message are not
+reported: they concern history, which a late subscriber is never promised (a volatile ros2cli
+echo never hears of it). The window is needed, not just "before the first message": the gap
+notice and the next message arrive together, and rclpy's executor runs subscriptions first.
 """
 
 from __future__ import annotations
@@ -32,6 +40,7 @@ from ros2cli_lite.qos import (
 
 SEEN_KEPT = 4096  # message keys remembered to drop a repeat (deeper than any usual history)
 POLL_PERIOD = 0.05  # seconds between two looks at the publishers (cheap: the local cache)
+CATCH_UP = 1.0  # seconds after a replacement's first message in which its losses are history
 
 
 class AdaptiveSubscription:
@@ -73,14 +82,31 @@ class AdaptiveSubscription:
         from rclpy.event_handler import UnsupportedEventTypeError
 
         events = subscription_events(self.node, self.topic, superseded=self._would_change)
-        events.message_lost = self.message_lost
+        replacing = hasattr(self, 'subscription')
+        first: list[float] = [] if replacing else [-CATCH_UP]  # monotonic time of 1st message
+        if self.message_lost is not None:
+            report = self.message_lost
+
+            def lost(status: Any) -> None:
+                if first and time.monotonic() - first[0] >= CATCH_UP:
+                    report(status)
+            events.message_lost = lost
+        deliver = self._deliver if not replacing else self._noting_first(first)
         try:
-            return self.node.create_subscription(self.msg_type, self.topic, self._deliver,
+            return self.node.create_subscription(self.msg_type, self.topic, deliver,
                                                  profile, event_callbacks=events, raw=self.raw)
         except UnsupportedEventTypeError:  # an RMW without the message-lost event
             events.message_lost = None
-            return self.node.create_subscription(self.msg_type, self.topic, self._deliver,
+            return self.node.create_subscription(self.msg_type, self.topic, deliver,
                                                  profile, event_callbacks=events, raw=self.raw)
+
+    def _noting_first(self, first: list[float]) -> Callable[[Any, Any], None]:
+        """_deliver, noting in `first` when the subscription delivered its first message."""
+        def deliver(msg: Any, info: Any) -> None:
+            if not first:
+                first.append(time.monotonic())
+            self._deliver(msg, info)
+        return deliver
 
     def _deliver(self, msg: Any, info: Any) -> None:
         if not self.fixed:
