@@ -164,7 +164,7 @@ class Cli:
 
 
 def _ours(env: dict[str, str]) -> Cli:
-    return Cli('ours', str(Path(get_package_prefix('ros2cli_lite')) / 'bin' / 'ros2'), env)
+    return Cli('ours', str(Path(get_package_prefix('ros2cli')) / 'bin' / 'ros2'), env)
 
 
 def reference_cli(path: str, env: dict[str, str]) -> Cli:
@@ -256,7 +256,7 @@ def _wait_worker(cli: Cli) -> None:
     overlay call); not for the reference, which has none."""
     if cli.label != 'ours':
         return
-    from ros2cli_lite.daemon import client, protocol
+    from ros2cli.daemon import client, protocol
     assert cli.overlay_env is not None
     values = {name: cli.overlay_env.get(name, '') for name in protocol.ENVIRONMENT}
     path = protocol.worker_path(protocol.socket_path(cli.overlay_env), values)

@@ -304,7 +304,7 @@ def stand_in_argv(*args: str) -> list[str]:
 
 def stop_daemon(env: dict[str, str]) -> None:
     """Stop the `ros2` graph daemon of `env`'s settings, if a command of the test started one."""
-    from ros2cli_lite.daemon import client, protocol
+    from ros2cli.daemon import client, protocol
     path = protocol.socket_path(env)
     if path.exists() or path.with_suffix('.lock').exists():
         client.stop(path)

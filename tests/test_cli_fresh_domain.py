@@ -3,7 +3,7 @@
 `ros2 topic echo` of a latched topic typed right after its publisher started, in a domain
 where no `ros2` daemon ran yet, used to pick its QoS before its node knew the publisher: it
 subscribed volatile and printed nothing (2 of 5 tries). Now its subscription follows the
-publishers (ros2cli_lite/adaptive_subscription.py), and `ros2 bag record` meets the graph
+publishers (ros2topic/api/adaptive_subscription.py), and `ros2 bag record` meets the graph
 before it says "Recording...".
 """
 
@@ -15,7 +15,7 @@ from contextlib import ExitStack
 from pathlib import Path
 
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
-from ros2cli_lite.daemon import protocol
+from ros2cli.daemon import protocol
 from std_msgs.msg import String
 
 from support import RosProcess, executable, leased_domain, ros_environment, stop_daemon

@@ -12,9 +12,9 @@ from rclpy.qos import (
     QoSProfile,
     ReliabilityPolicy,
 )
+from ros2topic.api import qos as cli_qos
 from std_msgs.msg import String
 
-from ros2cli_lite import qos as cli_qos
 from support import Background, ros2, ros2_side_by_side
 
 WARN = r'\[WARN\] \[\d+\.\d+\] \[_ros2cli_\d+\]: '

@@ -10,8 +10,8 @@ import threading
 import time
 
 import pytest
-from ros2cli_lite.api import CliError
-from ros2cli_lite.daemon import client, protocol
+from ros2cli.daemon import client, protocol
+from ros2cli.verb import CliError
 
 from support import cli_test_node_argv, leased_domain, ros2, ros_environment, stop_daemon
 
@@ -63,7 +63,7 @@ def test_start_status_stop_and_a_private_socket(ros_env):
 
 
 def test_a_socket_directory_others_can_enter_is_refused(ros_env, tmp_path):
-    shared = tmp_path / 'ros2cli_lite'
+    shared = tmp_path / 'ros2cli'
     shared.mkdir()
     shared.chmod(0o755)
     result = ros2(dict(ros_env, XDG_RUNTIME_DIR=str(tmp_path)), 'node', 'list')
@@ -73,7 +73,7 @@ def test_a_socket_directory_others_can_enter_is_refused(ros_env, tmp_path):
 
 
 def test_client_answers_without_rclpy(ros_env, node):
-    code = ('import sys\nfrom ros2cli_lite.cli import main\nmain(["node", "list"])\n'
+    code = ('import sys\nfrom ros2cli.cli import main\nmain(["node", "list"])\n'
             'print("rclpy" in sys.modules)')
     result = subprocess.run([sys.executable, '-c', code], env=ros_env, capture_output=True,
                             text=True, timeout=60)
@@ -92,7 +92,7 @@ def test_every_answer_complete_also_when_concurrent(ros_env, launch, node):
     assert answers == [nodes] * 10 + [services] * 10
 
     # The same graph for other code, as plain data, actions included.
-    code = ('import json\nfrom ros2cli_lite.graph import get_graph\ngraph = get_graph()\n'
+    code = ('import json\nfrom ros2cli.graph import get_graph\ngraph = get_graph()\n'
             'print(json.dumps([graph.actions(), graph.node("/turtlesim").action_servers, '
             'graph.node_names(), graph.topic_counts("/turtle1/pose")]))')
     result = subprocess.run([sys.executable, '-c', code], env=ros_env, capture_output=True,
@@ -193,7 +193,7 @@ def test_one_shot_verbs_run_in_the_daemon_and_stop_with_their_cli(ros_env, node,
     its verb waits takes the verb's node with it."""
     says(ros_env, 'daemon', 'start')
     assert ros2(ros_env, 'node', 'list').stdout == '/cli_test_node\n'  # the daemon is ready
-    code = ('import sys\nfrom ros2cli_lite.cli import main\n'
+    code = ('import sys\nfrom ros2cli.cli import main\n'
             'main(["param", "get", "/cli_test_node", "speed"])\n'
             'main(["topic", "echo", "--once", "--field", "x", "/pose"])\n'
             'print("rclpy" in sys.modules)')
@@ -230,7 +230,7 @@ def test_an_overlay_sourced_after_the_daemon_is_served_by_a_worker(ros_env, node
     sourced = dict(ros_env, AMENT_PREFIX_PATH=f'{prefix}{os.pathsep}{ros_env["AMENT_PREFIX_PATH"]}',
                    PYTHONPATH=os.pathsep.join(filter(None, [str(site),
                                                             ros_env.get('PYTHONPATH')])))
-    code = ('import sys\nfrom ros2cli_lite.cli import main\n'
+    code = ('import sys\nfrom ros2cli.cli import main\n'
             'main(["param", "get", "/cli_test_node", "speed"])\n'
             'print("rclpy" in sys.modules)')
 

@@ -1,8 +1,8 @@
-"""Who is on this host's domain (ros2cli_lite/participants.py), counted against real processes."""
+"""Who is on this host's domain (ros2cli/node/participants.py), counted against real processes."""
 
 import time
 
-from ros2cli_lite.participants import bound_participants, everyone_met, heard_participants
+from ros2cli.node.participants import bound_participants, everyone_met, heard_participants
 
 
 def wait_for(predicate, timeout, what, probe=None):

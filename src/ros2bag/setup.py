@@ -11,8 +11,8 @@ setup(
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
-        # `ros2 bag` (see ros2cli_lite/cli.py: commands come from this resource type).
-        ('share/ament_index/resource_index/ros2cli_lite.command',
+        # `ros2 bag` (see ros2cli/cli.py: commands come from this resource type).
+        ('share/ament_index/resource_index/ros2cli.command',
          sorted(glob('resource/commands/*'))),
     ],
     install_requires=['setuptools'],

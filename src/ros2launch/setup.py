@@ -9,8 +9,8 @@ setup(
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
-        # Adds `launch` to the `ros2` command (see ros2cli_lite/cli.py).
-        ('share/ament_index/resource_index/ros2cli_lite.command', ['resource/commands/launch']),
+        # Adds `launch` to the `ros2` command (see ros2cli/cli.py).
+        ('share/ament_index/resource_index/ros2cli.command', ['resource/commands/launch']),
     ],
     install_requires=['setuptools'],
     zip_safe=True,

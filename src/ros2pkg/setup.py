@@ -12,8 +12,8 @@ setup(
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
-        # `ros2 pkg` (see ros2cli_lite/cli.py).
-        ('share/ament_index/resource_index/ros2cli_lite.command',
+        # `ros2 pkg` (see ros2cli/cli.py).
+        ('share/ament_index/resource_index/ros2cli.command',
          sorted(glob('resource/commands/*'))),
     ],
     install_requires=['setuptools'],

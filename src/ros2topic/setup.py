@@ -1,3 +1,5 @@
+from glob import glob
+
 from setuptools import find_packages, setup
 
 package_name = 'ros2topic'
@@ -9,11 +11,13 @@ setup(
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
+        # `ros2 topic` (see ros2cli/cli.py: commands come from this resource type).
+        ('share/ament_index/resource_index/ros2cli.command', sorted(glob('resource/commands/*'))),
     ],
     install_requires=['setuptools'],
     zip_safe=True,
     maintainer='Turtlesim Team',
     maintainer_email='team@turtles.example.com',
-    description="Upstream's ros2topic.api on the ros2cli_lite `ros2 topic` verbs.",
+    description='The ros2 topic command and ros2topic.api',
     license='Apache-2.0',
 )

@@ -1,2 +1,2 @@
-"""Upstream's `ros2topic` module name: `ros2topic.api`, which tools written against ros2cli
-import. The `ros2 topic` verbs themselves are ros2cli_lite's (ros2cli_lite/command/topic)."""
+"""ros2topic: the `ros2 topic` command (command/topic.py, one module per verb under verb/)
+and its API (api/: what the verbs share, and upstream's ros2topic.api names)."""

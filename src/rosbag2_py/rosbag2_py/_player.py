@@ -13,8 +13,8 @@ import threading
 import time
 from typing import Any
 
-from ros2cli_lite.api import import_type
-from ros2cli_lite.node import wait_for_graph
+from ros2cli.interface_types import import_type
+from ros2cli.node.discovery import wait_for_graph
 
 from rosbag2_py._bag_files import BagReader
 from rosbag2_py._metadata_io import (
@@ -166,8 +166,8 @@ class PlayerNode:
         The `ros2` daemon's settled graph says how many subscribers each topic has: a fresh
         player may not have discovered them yet, and would otherwise play to nobody.
         """
-        from ros2cli_lite.api import CliError
-        from ros2cli_lite.graph import get_graph
+        from ros2cli.graph import get_graph
+        from ros2cli.verb import CliError
         try:
             graph = get_graph(detail=False)
             expected = {p.topic_name: graph.topic_counts(p.topic_name)[1]
@@ -295,7 +295,7 @@ class PlayerNode:
         deadline = time.monotonic() + (bound / 1000.0 if bound >= 0 else ACK_BOUND)
         if self.pending:
             # Spinning takes the answers in: a request is only sure to have arrived then.
-            from ros2cli_lite.node import spin_once
+            from ros2cli.node.direct import spin_once
             while not all(f.done() for f in self.pending) and time.monotonic() < deadline:
                 spin_once(self.node, 0.05)
         for publisher in self.publishers.values():

@@ -82,7 +82,7 @@ class PlayerServices:
         self._thread.start()
 
     def _spin(self) -> None:
-        from ros2cli_lite.node import spin_once
+        from ros2cli.node.direct import spin_once
 
         while not self._done.is_set():
             try:

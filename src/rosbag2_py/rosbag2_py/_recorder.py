@@ -15,7 +15,8 @@ import re
 import time
 from typing import Any
 
-from ros2cli_lite.api import import_type, is_hidden
+from ros2cli.interface_types import import_type
+from ros2cli.names import is_hidden
 
 from rosbag2_py._bag_files import BagWriter
 from rosbag2_py._metadata_io import (

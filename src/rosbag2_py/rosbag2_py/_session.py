@@ -54,7 +54,7 @@ def ros_node(name: str, stop: threading.Event | None = None, use_sim_time: bool 
         # A fresh participant knows nothing yet, and the others sometimes answer it only at
         # their next announcement, 3 s later: the CLI node's way, a fresh participant when
         # it is not met at once, then until the endpoints known have stopped changing.
-        from ros2cli_lite.node import meet_graph_made, settle_graph
+        from ros2cli.node.discovery import meet_graph_made, settle_graph
         context, node, _ = meet_graph_made(make, MEET_BOUND)
         settle_graph(node, SETTLE_BOUND)
     else:

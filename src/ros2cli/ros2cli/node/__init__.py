@@ -1,5 +1,4 @@
 """The node a command line tool talks to the graph with: the daemon's or its own."""
 
-from ros2cli_lite.node import NODE_NAME_PREFIX
-
-__all__ = ['NODE_NAME_PREFIX']
+# The name prefix of the CLI's hidden nodes (`_ros2cli_<pid>`), as upstream's.
+NODE_NAME_PREFIX = '_ros2cli'

@@ -1,6 +1,6 @@
 """DaemonNode and the daemon's life cycle, as upstream's ros2cli.node.daemon names them.
 
-The daemon is ros2cli_lite's (`ros2 daemon start/stop/status`): one per shell's ROS settings,
+The daemon is ros2cli.daemon's (`ros2 daemon start/stop/status`): one per shell's ROS settings,
 reached through a Unix socket. DaemonNode answers the graph queries from the daemon's settled
 view of the graph, in rclpy's shapes (lists of [name, namespace], [name, [types]]).
 """
@@ -11,7 +11,7 @@ import argparse
 import time
 from typing import Any
 
-from ros2cli_lite.daemon import client
+from ros2cli.daemon import client
 
 # The graph queries a DaemonNode answers; NodeStrategy asks its direct node for the rest.
 # (DaemonNode method, NodeInfo field) of the per-node queries.
@@ -62,7 +62,7 @@ class DaemonNode:
         pass
 
     def _graph(self, detail: bool = False) -> Any:
-        from ros2cli_lite.graph import Graph
+        from ros2cli.graph import Graph
         return Graph(client.request({'op': 'graph', 'detail': detail})['graph'])
 
     def __getattr__(self, name: str) -> Any:

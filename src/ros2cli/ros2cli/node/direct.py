@@ -1,13 +1,91 @@
-"""DirectNode: a tool's own node in rclpy's default context, met with the graph first."""
+"""The CLI's own node (ros2cli's direct node): made, met with the graph, spun, torn down.
+
+A verb that talks to the graph itself (echo, pub, call, param get, ...) opens one with
+`cli_node()`; DirectNode is upstream's class of the same, for third-party tools.
+"""
 
 from __future__ import annotations
 
 import argparse
 import os
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
 
 from ros2cli.node import NODE_NAME_PREFIX
+from ros2cli.node.discovery import (
+    create_node,
+    make_node,
+    meet_graph_replacing,
+    stop_if_cli_left,
+)
+
+
+@contextmanager
+def cli_node(name: str | None = None, discover: bool = True,
+             spin_time: float | None = None) -> Iterator[Any]:
+    """A hidden node `_ros2cli_<pid>` in a fresh context, torn down on exit.
+
+    With `discover`, make sure the node has met the rest of the graph first (see _meet_graph),
+    for at most `spin_time` seconds when given (a verb's --spin-time).
+    """
+    import rclpy
+
+    from ros2cli.daemon.verb_host import session
+    running_for = session()
+    node_name = name or f'{NODE_NAME_PREFIX}_{running_for.pid if running_for else os.getpid()}'
+    if running_for is not None:
+        # In the daemon, for a CLI: a node of the daemon's participant, which knows the graph.
+        context = running_for.context
+        node = create_node(node_name, context)
+    else:
+        context, node = make_node(node_name)
+    try:
+        if discover and running_for is None:
+            bound = 1.8 if spin_time is None else min(1.8, spin_time)
+            context, node, _ = meet_graph_replacing(context, node, lambda: make_node(node_name),
+                                           bound=bound)
+        yield node
+    finally:
+        # Shut the executor of spin_once down while its context lives: left to the garbage
+        # collector, it would destroy its guard condition after the context and print
+        # "Exception ignored in: Executor.__del__ ... InvalidHandle" on stderr.
+        executor = getattr(node, '_cli_executor', None)
+        if executor is not None:
+            executor.shutdown(timeout_sec=1.0)
+        node.destroy_node()
+        if running_for is None:
+            rclpy.try_shutdown(context=context)
+
+
+def spin_once(node: Any, timeout: float) -> None:
+    """Process pending callbacks of `node` for at most `timeout` seconds."""
+    stop_if_cli_left()
+    executor = getattr(node, '_cli_executor', None)
+    if executor is None:
+        executor = _cli_executor_class()(context=node.context)
+        executor.add_node(node)
+        node._cli_executor = executor
+    executor.spin_once(timeout_sec=timeout)
+
+
+def _cli_executor_class() -> type:
+    from rclpy.executors import SingleThreadedExecutor
+
+    class CliExecutor(SingleThreadedExecutor):
+        """rclpy's executor, quiet when a Ctrl-C cut its __init__ short.
+
+        rclpy's __del__ then reads an attribute __init__ never set and prints "Exception
+        ignored ... no attribute '_sigint_gc'" (found by tests/test_clean_exits.py).
+        """
+
+        def __del__(self) -> None:
+            if hasattr(self, '_sigint_gc'):
+                super().__del__()
+
+    return CliExecutor
+
 
 # Seconds a fresh node may wait for discovery (--spin-time), as upstream.
 DEFAULT_TIMEOUT = 0.5
@@ -25,8 +103,9 @@ class DirectNode:
     def __init__(self, args: Any, *, node_name: str | None = None) -> None:
         import rclpy
         from rclpy.parameter import Parameter
-        from ros2cli_lite.node import wait_for_graph, wait_until
-        from ros2cli_lite.participants import everyone_met
+
+        from ros2cli.node.discovery import wait_for_graph, wait_until
+        from ros2cli.node.participants import everyone_met
 
         rclpy.init(args=getattr(args, 'argv', []))
         if node_name is None:

@@ -2,7 +2,7 @@
 
 Third-party `ros2` tools write `with NodeStrategy(args) as node: node.get_topic_names_and_types()`
 and call `add_arguments(parser)` for --spin-time, --use-sim-time and --no-daemon; this is that
-API on ros2cli_lite's daemon (see ros2cli.node.daemon) and DirectNode.
+API on ros2cli's daemon (see ros2cli.node.daemon) and DirectNode.
 """
 
 from __future__ import annotations

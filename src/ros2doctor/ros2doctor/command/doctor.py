@@ -36,7 +36,7 @@ def _print_reports(makers, categories=None) -> None:
 
 
 def main(args: argparse.Namespace) -> int:
-    from ros2doctor.checks import CHECKS, REPORTS
+    from ros2doctor.api.checks import CHECKS, REPORTS
 
     def wanted(category: str) -> bool:
         return not (args.exclude_packages and category == 'package')

@@ -6,7 +6,7 @@ import argparse
 import os
 import sys
 
-from ros2cli_lite.api import CliError
+from ros2cli.verb import CliError
 
 from ros2launch.api import (
     MultipleLaunchFilesError,

@@ -1,23 +1,22 @@
-"""ros2cli's verb classes under upstream's names (`ros2topic.verb.info.InfoVerb`, ...), for code
-that drives a verb from Python: each delegates to the ros2cli_lite verb module of its name."""
+"""The `ros2 topic` verbs, one module each (HELP, add_arguments, main, runs_in_daemon), with
+upstream's class of each verb (`ros2topic.verb.info.InfoVerb`, ...) for code that drives a verb
+from Python: the class runs its module's main()."""
 
 from __future__ import annotations
 
 import argparse
-import importlib
+import sys
 from typing import Any
 
 
 class VerbExtension:
     """A `ros2 topic` verb: add_arguments(parser, cli_name) and main(*, args)."""
 
-    VERB = ''  # the module of ros2cli_lite.command.topic
-
     def _module(self) -> Any:
-        return importlib.import_module(f'ros2cli_lite.command.topic.{self.VERB}')
+        return sys.modules[type(self).__module__]
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
-        # The options every graph verb of the `ros2` command has (ros2cli_lite.api).
+        # The options every graph verb of the `ros2` command has (ros2cli.verb.add_graph_verb).
         parser.add_argument('--spin-time', type=float, default=None)
         parser.add_argument('-s', '--use-sim-time', action='store_true')
         parser.add_argument('--no-daemon', action='store_true')

@@ -1,0 +1,1 @@
+"""ros2node's API: what the `ros2 node` verbs share."""

@@ -1,0 +1,1 @@
+"""The `ros2 pkg` verbs, one module each (HELP, add_arguments, main)."""
