@@ -1,4 +1,14 @@
-"""Fixtures shared by every test: a leased ROS domain, node processes, an rclpy probe."""
+"""The workspace's pytest plugin (entry point pytest11 `ws_testing`): the fixtures every test
+uses: a leased ROS domain, node processes, an rclpy probe.
+
+Loaded by every pytest run where ws_testing is installed, as launch_testing's plugin is, so
+the tests of any package find these fixtures under `scripts/test` and under `colcon test`.
+Only fixtures a test asks for run; what acts on every test (the leak check of
+ws_testing.leak_check, Ctrl-C restored for the processes a test starts) is switched on by the
+ini option `ws_testing_checks = true` (the workspace's pyproject.toml), so pytest runs of
+other projects in the same environment (a `colcon test` of a package a test creates) stay as
+they were.
+"""
 
 from __future__ import annotations
 
@@ -7,97 +17,50 @@ import signal
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import pytest
 
-from support import (
-    LEASED_DOMAINS,
-    OWNER_VARIABLE,
-    RosProcess,
-    TestNode,
-    executable,
-    leased_domain,
-    owner_token,
-    ros_environment,
-    stop_daemon,
-    stop_leftovers,
-)
-
-if not os.environ.get('_ROS_WHEELS_BOOTSTRAP_COMPLETE'):
-    pytest.exit('run the tests through scripts/test (it sources the workspace)', returncode=4)
-
-# A shell without job control starts `scripts/test &` with SIGINT and SIGQUIT ignored, and
-# every process a test starts would inherit that: a node Ctrl-C'd while it starts would never
-# hear it (seen: the clean-exit tests failed in such a run). The tests are about Ctrl-C, so
-# the session takes Python's default back; exec resets it to the default in the children.
-for _signum, _default in ((signal.SIGINT, signal.default_int_handler),
-                          (signal.SIGQUIT, signal.SIG_DFL)):
-    if signal.getsignal(_signum) == signal.SIG_IGN:
-        signal.signal(_signum, _default)
+if TYPE_CHECKING:
+    from ws_testing.support import RosProcess, TestNode
 
 
-# Whose processes are these? Each process inherits OWNER_VARIABLE (tests/support.py) from the
-# code that started it: a fixture's setup marks them with the fixture's scope (the test, its
-# module, the session), also when a test asks for a module fixture late (getfixturevalue); the
-# test's own body with the test. Processes started with a module's environment (module_ros_env)
-# belong to the module. At the end of each scope, what still runs of it is a leak.
-@pytest.hookimpl(hookwrapper=True)
-def pytest_fixture_setup(fixturedef: pytest.FixtureDef, request: pytest.FixtureRequest
-                         ) -> Iterator[None]:
-    os.environ[OWNER_VARIABLE] = owner_token(request.node.nodeid)
-    yield
+def pytest_addoption(parser: pytest.Parser) -> None:
+    parser.addini('ws_testing_checks', type='bool', default=False,
+                  help='ws_testing: fail a test that leaves a process running, restore Ctrl-C '
+                       'for the processes tests start, and require a sourced ROS environment')
 
 
-@pytest.hookimpl(hookwrapper=True)
-def pytest_runtest_call(item: pytest.Item) -> Iterator[None]:
-    os.environ[OWNER_VARIABLE] = owner_token(item.nodeid)
-    yield
-
-
-def _fail_on_leftovers(scope: str, matches: Callable[[str], bool]) -> None:
-    """After a scope's own fixtures stopped what they started: fail naming what still runs."""
-    left = stop_leftovers(matches)
-    if left:
-        pytest.fail(f'{scope} left processes running (killed now):\n' + '\n'.join(left),
-                    pytrace=False)
-
-
-@pytest.fixture(scope='session', autouse=True)
-def no_daemon_left() -> Iterator[None]:
-    """Whatever test started a `ros2` daemon on a leased domain, none outlives the session;
-    nor does any other process the session started."""
-    yield
-    for leased in sorted(LEASED_DOMAINS):
-        stop_daemon(ros_environment(leased))
-    os.environ.pop(OWNER_VARIABLE, None)
-    session = owner_token('')
-    _fail_on_leftovers('the test session', lambda owner: owner.startswith(session))
-
-
-@pytest.fixture(scope='module', autouse=True)
-def no_process_left_by_module(request: pytest.FixtureRequest) -> Iterator[None]:
-    """Processes of a module's shared fixtures (module_launch, a module's own) are its own."""
-    yield
-    token = owner_token(request.node.nodeid)
-    _fail_on_leftovers(f'module {request.node.nodeid}', lambda owner: owner == token)
-
-
-@pytest.fixture(autouse=True)
-def no_process_left_by_test(request: pytest.FixtureRequest) -> Iterator[None]:
-    """A test fails when a process it started, or a descendant of one, outlives it."""
-    yield
-    token = owner_token(request.node.nodeid)
-    _fail_on_leftovers(request.node.nodeid, lambda owner: owner == token)
+def pytest_configure(config: pytest.Config) -> None:
+    if not config.getini('ws_testing_checks'):
+        return
+    sourced = ('_ROS_WHEELS_BOOTSTRAP_COMPLETE', 'AMENT_PREFIX_PATH')  # ours, or apt's setup
+    if not any(os.environ.get(name) for name in sourced):
+        pytest.exit('run the tests through scripts/test (it sources the workspace), or source '
+                    'a ROS 2 environment first', returncode=4)
+    # A shell without job control starts `scripts/test &` with SIGINT and SIGQUIT ignored, and
+    # every process a test starts would inherit that: a node Ctrl-C'd while it starts would
+    # never hear it (seen: the clean-exit tests failed in such a run). The tests are about
+    # Ctrl-C, so the session takes Python's default back; exec resets it in the children.
+    for signum, default in ((signal.SIGINT, signal.default_int_handler),
+                            (signal.SIGQUIT, signal.SIG_DFL)):
+        if signal.getsignal(signum) == signal.SIG_IGN:
+            signal.signal(signum, default)
+    from ws_testing import leak_check
+    if not config.pluginmanager.is_registered(leak_check):
+        config.pluginmanager.register(leak_check, 'ws_testing.leak_check')
 
 
 @pytest.fixture
 def domain() -> Iterator[int]:
+    from ws_testing.support import leased_domain
     with leased_domain() as leased:
         yield leased
 
 
 @pytest.fixture
 def ros_env(domain: int) -> Iterator[dict[str, str]]:
+    from ws_testing.support import ros_environment, stop_daemon
     env = ros_environment(domain)
     yield env
     stop_daemon(env)  # graph verbs start a daemon for the test's domain: leave none behind
@@ -105,6 +68,7 @@ def ros_env(domain: int) -> Iterator[dict[str, str]]:
 
 @contextmanager
 def _launcher(ros_env: dict[str, str], directory: Path) -> Iterator[Callable[..., RosProcess]]:
+    from ws_testing.support import RosProcess, executable
     started: list[RosProcess] = []
 
     def start(package: str | None = None, name: str | None = None, *args: str,
@@ -130,6 +94,7 @@ def launch(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Callable[..., Ro
 @pytest.fixture(scope='module')
 def module_ros_env() -> Iterator[dict[str, str]]:
     """A domain and environment shared by the tests of one module (one turtlesim for all)."""
+    from ws_testing.support import leased_domain, ros_environment, stop_daemon
     with leased_domain() as leased:
         env = ros_environment(leased)
         yield env
@@ -154,6 +119,7 @@ def module_turtlesim(module_launch: Callable[..., RosProcess]) -> RosProcess:
 
 @pytest.fixture
 def probe(domain: int) -> Iterator[TestNode]:
+    from ws_testing.support import TestNode
     node = TestNode(domain)
     yield node
     node.close()

@@ -1,5 +1,8 @@
 """Shared test helpers: ROS domains, node processes, and an in-test rclpy node.
 
+Imported as `from ws_testing import RosProcess, ...` (tests/support.py re-exports it for the
+tests that still say `from support import ...`).
+
 Every test talks real DDS on loopback (ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST) in a
 ROS_DOMAIN_ID leased for that test only, so concurrent test runs never hear each other.
 """
@@ -29,7 +32,19 @@ from rclpy.context import Context
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 
-REPO = Path(__file__).resolve().parent.parent
+
+def _workspace_root() -> Path:
+    """The repository the tests run in: the folder with tools/test_only_packages.txt above this
+    file (a symlink install) or above the working directory (`colcon test` runs in the
+    package's folder); the working directory if neither has it."""
+    for start in (Path(__file__).resolve(), Path.cwd()):
+        for folder in start.parents:
+            if (folder / 'tools' / 'test_only_packages.txt').is_file():
+                return folder
+    return Path.cwd()
+
+
+REPO = _workspace_root()
 LOCK_DIR = Path('/tmp/turtle-ws-domains')
 # Fast DDS maps a domain to UDP ports 7400 + 250 * id: ids up to 232 are valid on Linux.
 DOMAIN_IDS = range(1, 230)
@@ -220,7 +235,7 @@ class Background:
         self._thread.join(timeout=5)
 
 
-# --- processes a test leaves behind (tests/conftest.py) -------------------------------------------
+# --- processes a test leaves behind (ws_testing/leak_check.py) ------------------------------------
 
 # Every process started while a test (module, session) runs inherits this variable from the test
 # process's environment (ros_environment() copies it too), and so do its descendants, reparented
@@ -304,7 +319,17 @@ def stand_in_argv(*args: str) -> list[str]:
 
 def stop_daemon(env: dict[str, str]) -> None:
     """Stop the `ros2` graph daemon of `env`'s settings, if a command of the test started one."""
-    from ros2cli_lite.daemon import client, protocol
+    try:
+        from ros2cli_lite.daemon import client, protocol
+    except ImportError:  # apt Jazzy's ros2cli: its daemon listens on 11511 + the domain id
+        import socket
+        port = 11511 + int(env.get('ROS_DOMAIN_ID', '0'))
+        with socket.socket() as probe:
+            if probe.connect_ex(('127.0.0.1', port)) != 0:
+                return
+        subprocess.run(['ros2', 'daemon', 'stop'], env=env, capture_output=True, timeout=30,
+                       stdin=subprocess.DEVNULL, check=False)
+        return
     path = protocol.socket_path(env)
     if path.exists() or path.with_suffix('.lock').exists():
         client.stop(path)
