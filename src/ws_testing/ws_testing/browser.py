@@ -18,10 +18,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ws_testing.support import REPO
+
 CHROMIUM = '/usr/bin/chromium'
 CHROMIUM_ARGS = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
                  '--disable-component-update', '--disable-sync', '--no-first-run']
-SCREENSHOTS = Path(__file__).resolve().parent.parent / 'artifacts' / 'rqt'
+SCREENSHOTS = REPO / 'artifacts' / 'rqt'
 URL = re.compile(r'(http://127\.0\.0\.1:(\d+)/\S*\?token=(\w+))')
 
 

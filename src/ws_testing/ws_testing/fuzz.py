@@ -1,4 +1,4 @@
-"""Hypothesis strategies and a long-lived target node for the fuzz tests (tests/test_fuzz_*.py).
+"""Hypothesis strategies and a long-lived target node for the fuzz tests (test_fuzz_*.py).
 
 One node process serves a whole test module (start-up and discovery cost seconds); each
 example calls it through clients created once, and checks what a user would see: an answer,
@@ -19,7 +19,7 @@ from hypothesis import HealthCheck, Phase, Verbosity, settings
 from hypothesis import strategies as st
 from rcl_interfaces.msg import ParameterType, ParameterValue
 
-from support import RosProcess, TestNode
+from ws_testing.support import RosProcess, TestNode
 
 # Few examples in scripts/test (each is a real DDS round trip), a fixed derandomized sequence
 # so CI runs are reproducible; bench/fuzz.py runs the same properties with 10,000 cases.
