@@ -8,10 +8,11 @@ import subprocess
 import sys
 import threading
 import time
+from pathlib import Path
 
 import pytest
 from ros2cli.daemon import client, protocol
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError
 
 from support import cli_test_node_argv, leased_domain, ros2, ros_environment, stop_daemon
 
@@ -124,10 +125,19 @@ def test_sigkilled_node_is_gone_within_3_s_and_clean_exit_at_once(ros_env, launc
     assert ros2(ros_env, 'node', 'list').stdout == ''
 
 
-def _socket_entries(path) -> int:
-    """How many sockets carry this path: the listening one, then one per connection."""
+def _queued_connections(path, daemon: int) -> int:
+    """How many connections to this path wait in the kernel's queue, not yet accepted: sockets
+    carrying the path that no descriptor of the daemon holds (the daemon's own are its
+    listening socket and the connections it accepted but has not closed yet)."""
+    held = set()
+    for fd in Path(f'/proc/{daemon}/fd').iterdir():
+        try:
+            held.add(os.readlink(fd))
+        except OSError:
+            continue  # closed meanwhile
     with open('/proc/net/unix') as table:
-        return sum(1 for line in table if line.rstrip().endswith(str(path)))
+        return sum(1 for line in table if line.rstrip().endswith(str(path))
+                   and f'socket:[{line.split()[6]}]' not in held)
 
 
 def test_daemon_killed_is_replaced_and_a_crash_mid_call_is_one_line(ros_env, node):
@@ -146,9 +156,10 @@ def test_daemon_killed_is_replaced_and_a_crash_mid_call_is_one_line(ros_env, nod
         call = subprocess.Popen(['ros2', 'node', 'list'], env=ros_env, text=True,
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE)
         # The command has connected once the kernel queued its connection on the stopped
-        # daemon's socket: a second entry with the socket's path (a fixed sleep was too short
-        # on a loaded machine: the command then found no daemon and started a new one).
-        wait_for(lambda: _socket_entries(protocol.socket_path(ros_env)) >= 2, 30,
+        # daemon's socket (a fixed sleep was too short on a loaded machine: the command then
+        # found no daemon and started a new one). Counting every socket with the path was not
+        # enough: the daemon, stopped right after answering, may still hold that connection.
+        wait_for(lambda: _queued_connections(protocol.socket_path(ros_env), second) >= 1, 30,
                  'the command to connect to the stopped daemon')
         os.kill(second, signal.SIGKILL)
     finally:

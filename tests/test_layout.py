@@ -4,9 +4,11 @@ Every src/ package's Python (modules, launch files, scripts with a python sheban
 and each import of another workspace package becomes an edge between packages. The tests
 fail on a cycle between packages, on an edge its package.xml does not declare, on turtlesim
 (the simulator, a leaf upstream) importing any workspace package but node_runtime, and on
-my_robot_controller's nodes importing more than interfaces and node_runtime. Launch files
-(`*.launch.py`) count for cycles and package.xml, not for those two rules: a launch file is
-run by `ros2 launch`, it is no part of a node.
+my_robot_controller's nodes importing more than interfaces and node_runtime, and on a package
+importing another package's `verb` modules (a `ros2` command's verbs are its own: what other
+code may use is the command's `api`) or another package's private (underscore-named) modules.
+Launch files (`*.launch.py`) count for cycles and package.xml, not for the turtlesim and course
+rules: a launch file is run by `ros2 launch`, it is no part of a node.
 
 `python tests/test_layout.py [--mermaid]` prints the dependency table (or the drawing) of
 docs/architecture.md.
@@ -108,6 +110,74 @@ def imported_names(path: Path) -> list[tuple[str, int]]:
     return names
 
 
+def imported_modules(path: Path) -> list[tuple[str, int]]:
+    """(dotted module, line) of every absolute import, also inside functions: `import a.b` is
+    a.b; `from a.b import c` is a.b and a.b.c (c may be a module); import_module('a.b') a.b."""
+    tree = ast.parse(path.read_text(), filename=str(path))
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            found += [(alias.name, node.lineno) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            found.append((node.module, node.lineno))
+            found += [(f'{node.module}.{alias.name}', node.lineno) for alias in node.names
+                      if alias.name != '*']
+        elif (isinstance(node, ast.Call) and node.args
+              and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)
+              and getattr(node.func, 'attr', getattr(node.func, 'id', None))
+              in IMPORT_FUNCTIONS):
+            found.append((node.args[0].value, node.lineno))
+    return found
+
+
+def known_modules(packages: dict[str, Package]) -> set[str]:
+    """Dotted names of every module and package of the workspace's Python (from the files)."""
+    found = set()
+    for package in packages.values():
+        for path in python_files(package, packages):
+            if path.suffix != '.py' or path.name.endswith('.launch.py'):
+                continue
+            parts = path.relative_to(package.path).with_suffix('').parts
+            if parts and parts[0] in package.modules:
+                found.add('.'.join(parts[:-1] if parts[-1] == '__init__' else parts))
+    return found
+
+
+def boundary_violations(importer: str, module: str, owner: dict[str, str],
+                        modules: set[str]) -> list[str]:
+    """Why `importer`'s import of `module` crosses another package's boundary ([] if not): a
+    command's verb modules (`<pkg>.verb...`) and underscore-named modules (`modules` tells a
+    module from a name imported from one) are their package's."""
+    parts = module.split('.')
+    target = owner.get(parts[0])
+    if target is None or target == importer:
+        return []
+    found = []
+    if len(parts) > 1 and parts[1] == 'verb':
+        found.append(f"{target}'s verb module")
+    while parts and '.'.join(parts) not in modules:
+        parts = parts[:-1]  # `from a.b import c`: c may be a name, not a module
+    private = [part for part in parts[1:] if part.startswith('_') and not part.startswith('__')]
+    if private:
+        found.append(f"{target}'s private module {'.'.join(parts[:parts.index(private[0]) + 1])}")
+    return found
+
+
+def scan_boundaries(packages: dict[str, Package]) -> list[str]:
+    """Every import of one package that reaches into another's verbs or private modules."""
+    owner = {module: package.name for package in packages.values()
+             for module in package.modules}
+    modules = known_modules(packages)
+    found: dict[tuple[str, str], str] = {}  # (where, why) -> what; `from a import b` once
+    for package in packages.values():
+        for path in python_files(package, packages):
+            for module, line in imported_modules(path):
+                where = f'{path.relative_to(REPO)}:{line}'
+                for why in boundary_violations(package.name, module, owner, modules):
+                    found.setdefault((where, why), f'{package.name} imports {module} ({where})')
+    return [f'{what}: {why}' for (_, why), what in found.items()]
+
+
 def scan() -> dict[str, Package]:
     packages = find_packages()
     owner = {module: package.name for package in packages.values()
@@ -200,6 +270,43 @@ def test_no_package_imports_another_packages_internals():
              for module, where in sorted(package.modules_imported.items())
              if PRIVATE_MODULES.get(module, package.name) != package.name]
     assert found == [], '\n'.join(found)
+
+
+def test_no_package_imports_another_packages_verbs_or_private_modules():
+    # A verb module is its command's: what other code may use is the command's `api`
+    # (`ros2topic.api`, not `ros2topic.verb.echo`); an underscore-named module is its package's.
+    found = scan_boundaries(find_packages())
+    assert found == [], '\n'.join(found)
+
+
+def test_the_boundary_check_catches_a_verb_import_a_private_import_and_an_undeclared_one(
+        tmp_path):
+    # The checker itself, on a scratch package that does all three wrong things.
+    (tmp_path / 'scratch').mkdir()
+    (tmp_path / 'scratch' / 'package.xml').write_text(
+        '<package format="3"><name>scratch</name><exec_depend>ros2topic</exec_depend>'
+        '</package>')
+    (tmp_path / 'scratch' / 'scratch').mkdir()
+    module = tmp_path / 'scratch' / 'scratch' / '__init__.py'
+    module.write_text('from ros2topic.verb import echo\nimport rosbag2_py._session\n'
+                      'from ros2cli.node import direct\n')
+    packages = find_packages()
+    scratch = Package('scratch', tmp_path / 'scratch', {'ros2topic'}, {'scratch'})
+    owner = {name: package.name for package in packages.values() for name in package.modules}
+    modules = known_modules(packages)
+    why = [reason for name, _ in imported_modules(module)
+           for reason in boundary_violations('scratch', name, owner, modules)]
+    assert why == ["ros2topic's verb module", "ros2topic's verb module",
+                   "rosbag2_py's private module rosbag2_py._session"]
+    undeclared = {owner[name.split('.')[0]] for name, _ in imported_modules(module)
+                  if name.split('.')[0] in owner} - scratch.declared
+    assert undeclared == {'ros2cli', 'rosbag2_py'}
+    # A package may import its own verbs and private modules; a private name of a public
+    # module is a name, not a module.
+    assert boundary_violations('ros2topic', 'ros2topic.verb.echo', owner, modules) == []
+    assert boundary_violations('rosbag2_py', 'rosbag2_py._session', owner, modules) == []
+    assert boundary_violations('ros2bag', 'rosbag2_py._session.exit_now', owner, modules) == [
+        "rosbag2_py's private module rosbag2_py._session"]
 
 
 # Ours on purpose: tutorial packages and the course's own; on apt Jazzy they overlay upstream's.

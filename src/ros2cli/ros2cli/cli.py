@@ -15,7 +15,7 @@ import os
 import signal
 import sys
 
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError, VerbContext, run_main
 
 RESOURCE_TYPE = 'ros2cli.command'
 
@@ -66,24 +66,15 @@ def main(argv: list[str] | None = None) -> int | str:
 
 
 def _dispatch(argv: list[str]) -> int | str:
-    return _run(argv, daemon_may_run=True)
-
-
-def run_here(argv: list[str]) -> int | str:
-    """Parse and run in this process: the daemon's entry for the verbs it runs (verb_host.py,
-    which calls this; the CLI side, daemon/verb_client.py, never calls back)."""
-    return _run(argv, daemon_may_run=False)
-
-
-def _run(argv: list[str], daemon_may_run: bool) -> int | str:
+    """Parse argv once; run the verb here, or have the daemon run it (verb_client.py)."""
     commands = registered_commands()
     if argv and argv[0] in commands:
         # A command that parses its own arguments (`ros2 run` passes everything after the
-        # executable through untouched) has `main_argv(argv)`.
+        # executable through untouched) has `main_argv(argv, context)`.
         module = importlib.import_module(commands[argv[0]][0])
         main_argv = getattr(module, 'main_argv', None)
         if main_argv is not None:
-            return _guard(lambda: main_argv(argv[1:]))
+            return _guard(lambda: main_argv(argv[1:], VerbContext.here()))
     wanted = next((word for word in argv if not word.startswith('-')), None)
     parser = build_parser(commands, only=wanted if wanted in commands else None)
     args = parser.parse_args(argv)
@@ -94,12 +85,12 @@ def _run(argv: list[str], daemon_may_run: bool) -> int | str:
     if func is None:
         parser.parse_args([args._command, '--help'])
         return 0
-    if daemon_may_run and _runs_in_daemon(func, args):
+    if _runs_in_daemon(func, args):
         from ros2cli.daemon.verb_client import run_in_daemon
-        code = run_in_daemon(argv)
+        code = run_in_daemon(func, args)
         if code is not None:
             return code
-    return _guard(lambda: func(args))
+    return _guard(lambda: run_main(func, args, VerbContext.here()))
 
 
 def _runs_in_daemon(func, args: argparse.Namespace) -> bool:

@@ -24,6 +24,8 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any, NamedTuple
 
+from ros2cli.verb_context import VerbContext
+
 NamesAndTypes = list[tuple[str, list[str]]]
 ENTITY_KINDS = ('subscribers', 'publishers', 'service_servers', 'service_clients',
                 'action_servers', 'action_clients')
@@ -158,9 +160,10 @@ class _DaemonSource(GraphSource):
 class _DirectSource(GraphSource):
     """Today's daemon-less discovery: a fresh hidden node that waits for the graph to settle."""
 
-    def __init__(self, node: Any, spin_time: float | None = None) -> None:
+    def __init__(self, node: Any, spin_time: float | None, context: VerbContext) -> None:
         self.node = node
         self.spin_time = spin_time
+        self.context = context
 
     def graph(self, detail: bool = False, ready: Callable[[Graph], bool] | None = None,
               bound: float | None = None) -> Graph:
@@ -168,10 +171,10 @@ class _DirectSource(GraphSource):
         if bound is None:
             bound = self.spin_time
         if ready is None:
-            wait_for_graph(self.node, bound=bound)
+            wait_for_graph(self.node, bound=bound, context=self.context)
         else:
             wait_for_graph(self.node, ready=lambda: ready(Graph(snapshot(self.node, detail))),
-                           settle=0.2, bound=bound)
+                           settle=0.2, bound=bound, context=self.context)
         return Graph(snapshot(self.node, detail))
 
     def endpoints(self, topic: str) -> tuple[list[str], list[str]]:
@@ -186,18 +189,20 @@ def _lookup_bound(spin_time: float | None) -> float:
 
 
 @contextmanager
-def graph_source(use_daemon: bool = True, spin_time: float | None = None
-                 ) -> Iterator[GraphSource]:
+def graph_source(use_daemon: bool = True, spin_time: float | None = None,
+                 context: VerbContext | None = None) -> Iterator[GraphSource]:
     """The daemon (started on first use), or with use_daemon=False a CLI node of our own.
 
-    `spin_time` (a verb's --spin-time) bounds the waits for a named entity to appear.
+    `spin_time` (a verb's --spin-time) bounds the waits for a named entity to appear; a verb
+    passes its `context` (default: this process's, for code outside the CLI).
     """
     if use_daemon:
         yield _DaemonSource(spin_time)
         return
     from ros2cli.node.direct import cli_node
-    with cli_node(spin_time=spin_time) as node:
-        yield _DirectSource(node, spin_time)
+    context = context or VerbContext.here()
+    with cli_node(context, spin_time=spin_time) as node:
+        yield _DirectSource(node, spin_time, context)
 
 
 def get_graph(use_daemon: bool = True, detail: bool = True) -> Graph:

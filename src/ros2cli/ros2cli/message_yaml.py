@@ -14,7 +14,7 @@ from typing import Any
 from rosidl_runtime_py.convert import dump_yaml as to_yaml
 from rosidl_runtime_py.set_message import FieldError, set_message_fields
 
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError
 
 __all__ = ['load_values', 'populate', 'to_yaml', 'yaml_problem']
 

@@ -4,6 +4,7 @@ Bags are written with the `mcap` and `rosbags` libraries and read with `rosbags`
 code serves `ros2 bag` (package ros2bag), so a bag of one is a bag of the other.
 """
 
+from rosbag2_py._bag_files import STORAGE_PRESETS
 from rosbag2_py._compression_options import (
     CompressionMode,
     CompressionOptions,
@@ -51,6 +52,7 @@ from rosbag2_py._writer import (
 )
 
 __all__ = [
+    'STORAGE_PRESETS',
     'BagMetadata',
     'CompressionMode',
     'CompressionOptions',

@@ -167,7 +167,7 @@ class PlayerNode:
         player may not have discovered them yet, and would otherwise play to nobody.
         """
         from ros2cli.graph import get_graph
-        from ros2cli.verb import CliError
+        from ros2cli.verb_context import CliError
         try:
             graph = get_graph(detail=False)
             expected = {p.topic_name: graph.topic_counts(p.topic_name)[1]

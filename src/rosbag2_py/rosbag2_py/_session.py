@@ -11,7 +11,7 @@ import sys
 import threading
 from collections.abc import Callable, Iterator
 from contextlib import ExitStack, contextmanager
-from typing import Any, NoReturn
+from typing import Any
 
 SIGNAL_CHECK_PERIOD = 0.1
 # A recorder first meets the participants on this host, for at most one whole Fast DDS
@@ -65,20 +65,6 @@ def ros_node(name: str, stop: threading.Event | None = None, use_sim_time: bool 
         node.destroy_node()
         rclpy.try_shutdown(context=context)
         handlers.close()
-
-
-def exit_now(result: int | str) -> NoReturn:
-    """End the process with `result` as `ros2` would (a string: on stderr, status 1), without
-    Python's and the libraries' teardown. Only once everything is closed and flushed."""
-    code = result if isinstance(result, int) else 1
-    try:
-        if isinstance(result, str):
-            print(result, file=sys.stderr)
-        sys.stdout.flush()
-        sys.stderr.flush()
-    except (BrokenPipeError, ValueError):
-        pass  # nobody reads any more (`| head`), or a stream was closed
-    os._exit(code)
 
 
 def make_executor(node: Any, events: bool = False) -> Any:

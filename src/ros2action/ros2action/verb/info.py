@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2action.api import absolute, query_graph
 
 HELP = 'Print information about an action'
@@ -18,7 +20,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='Only display the number of action clients and action servers')
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from rclpy.exceptions import InvalidTopicNameException
     from rclpy.validate_full_topic_name import validate_full_topic_name
 
@@ -29,12 +31,17 @@ def main(args: argparse.Namespace) -> int | str:
         # rclpy's text: 'Invalid topic name: <why>:' then the name with a caret under it.
         why = str(error).splitlines()[0].removeprefix('Invalid topic name: ').rstrip(':')
         return f"Invalid action name '{args.action_name}': {why}"
-    servers, clients = query_graph(args, detail=True, action=action).action_endpoints(action)
-    print(f'Action: {action}')
+    servers, clients = query_graph(
+        args, detail=True, action=action, context=context
+    ).action_endpoints(action)
+    print(f'Action: {action}', file=context.stdout)
     for title, entries in (('Action clients', clients), ('Action servers', servers)):
-        print(f'{title}: {len(entries)}')
+        print(f'{title}: {len(entries)}', file=context.stdout)
         if args.count:
             continue
         for name, types in entries:
-            print(f'    {name} [{", ".join(types)}]' if args.show_types else f'    {name}')
+            print(
+                f'    {name} [{", ".join(types)}]' if args.show_types else f'    {name}',
+                file=context.stdout,
+            )
     return 0

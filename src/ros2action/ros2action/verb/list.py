@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2action.api import query_graph
 
 HELP = 'Output a list of action names'
@@ -16,11 +18,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='Only display the number of actions discovered')
 
 
-def main(args: argparse.Namespace) -> int:
-    found = query_graph(args).actions()
+def main(args: argparse.Namespace, context: VerbContext) -> int:
+    found = query_graph(args, context=context).actions()
     if args.count_actions:
-        print(len(found))
+        print(len(found), file=context.stdout)
         return 0
     for name, types in found:
-        print(f'{name} [{", ".join(types)}]' if args.show_types else name)
+        print(f'{name} [{", ".join(types)}]' if args.show_types else name, file=context.stdout)
     return 0

@@ -6,7 +6,7 @@ import argparse
 import sys
 import time
 
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError, VerbContext
 
 HELP = 'Send an action goal'
 
@@ -40,7 +40,7 @@ def runs_in_daemon(args: argparse.Namespace) -> bool:
     return not args.stdin
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from rclpy.action import ActionClient
     from ros2cli.interface_types import import_type
     from ros2cli.message_yaml import populate
@@ -55,21 +55,22 @@ def main(args: argparse.Namespace) -> int | str:
     # Checked before any node exists: a refused goal is never sent.
     goal = populate(action_type.Goal(), text)
 
-    with cli_node(spin_time=args.spin_time) as node:
+    with cli_node(context, spin_time=args.spin_time) as node:
         client = ActionClient(node, action_type, args.action_name)
         try:
-            return _run_goal(node, client, goal, args)
+            return _run_goal(node, client, goal, args, context)
         finally:
             client.destroy()
 
 
-def _run_goal(node, client, goal, args: argparse.Namespace) -> int | str:
+def _run_goal(node, client, goal, args: argparse.Namespace, context: VerbContext
+              ) -> int | str:
     from rosidl_runtime_py import message_to_yaml
-    print('Waiting for an action server to become available...', flush=True)
-    if not _wait_for_server(client, args.timeout):
+    print('Waiting for an action server to become available...', flush=True, file=context.stdout)
+    if not _wait_for_server(client, args.timeout, context):
         return (f"Action server '{args.action_name}' did not become available within "
                 f'{args.timeout:g} s (is its node running? see `ros2 action list`)')
-    print(f'Sending goal:\n     {message_to_yaml(goal)}', flush=True)
+    print(f'Sending goal:\n     {message_to_yaml(goal)}', flush=True, file=context.stdout)
 
     # rclpy may hand over feedback before the goal response that accepts the goal (both can
     # arrive in one wait): hold it until 'Goal accepted' is printed, so the output keeps
@@ -79,60 +80,71 @@ def _run_goal(node, client, goal, args: argparse.Namespace) -> int | str:
     def on_feedback(feedback) -> None:
         text = f'Feedback:\n    {message_to_yaml(feedback.feedback)}'
         if early_feedback is None:
-            print(text, flush=True)
+            print(text, flush=True, file=context.stdout)
         else:
             early_feedback.append(text)
 
     handle = _wait(node, client.send_goal_async(
-        goal, feedback_callback=on_feedback if args.feedback else None), 'sending goal')
+        goal, feedback_callback=on_feedback if args.feedback else None), 'sending goal', context)
     if not handle.accepted:
-        print('Goal was rejected.')
+        print('Goal was rejected.', file=context.stdout)
         return 0
-    print(f'Goal accepted with ID: {bytes(handle.goal_id.uuid).hex()}\n', flush=True)
+    print(
+        f'Goal accepted with ID: {bytes(handle.goal_id.uuid).hex()}\n',
+        flush=True,
+        file=context.stdout,
+    )
     for text in early_feedback:
-        print(text, flush=True)
+        print(text, flush=True, file=context.stdout)
     early_feedback = None
     try:
-        result = _wait(node, handle.get_result_async(), 'getting result')
+        result = _wait(node, handle.get_result_async(), 'getting result', context)
     except KeyboardInterrupt:
-        _cancel(node, handle)
+        _cancel(node, handle, context)
         raise
-    print(f'Result:\n    {message_to_yaml(result.result)}')
-    print(f'Goal finished with status: {STATUS_NAMES.get(result.status, "UNKNOWN")}')
+    print(f'Result:\n    {message_to_yaml(result.result)}', file=context.stdout)
+    print(
+        f'Goal finished with status: {STATUS_NAMES.get(result.status, "UNKNOWN")}',
+        file=context.stdout,
+    )
     return 0
 
 
-def _wait_for_server(client, timeout: float) -> bool:
-    from ros2cli.node.direct import stop_if_cli_left
+def _wait_for_server(client, timeout: float, context: VerbContext) -> bool:
     if timeout <= 0:
         while not client.wait_for_server(timeout_sec=1.0):
-            stop_if_cli_left()
+            context.check_cancelled()
         return True
     return client.wait_for_server(timeout_sec=timeout)
 
 
-def _wait(node, future, what: str, timeout: float | None = None):
+def _wait(node, future, what: str, context: VerbContext, timeout: float | None = None):
     """Spin until `future` is done; its result, or CliError naming what failed."""
     from ros2cli.node.direct import spin_once
+
     deadline = None if timeout is None else time.monotonic() + timeout
     while not future.done():
         if deadline is not None and time.monotonic() > deadline:
             raise CliError(f'Timed out {what}')
-        spin_once(node, 0.1)
+        spin_once(node, 0.1, context)
     if future.exception() is not None or future.result() is None:
         raise CliError(f'Exception while {what}: {future.exception()!r}')
     return future.result()
 
 
-def _cancel(node, handle) -> None:
+def _cancel(node, handle, context: VerbContext) -> None:
     """Ctrl-C while the goal runs: cancel it, as ros2cli does, before exiting."""
     from action_msgs.msg import GoalStatus
-    if handle.status not in (GoalStatus.STATUS_ACCEPTED, GoalStatus.STATUS_EXECUTING,
-                             GoalStatus.STATUS_UNKNOWN):
+
+    if handle.status not in (
+        GoalStatus.STATUS_ACCEPTED,
+        GoalStatus.STATUS_EXECUTING,
+        GoalStatus.STATUS_UNKNOWN,
+    ):
         return
-    print('Canceling goal...', flush=True)
-    response = _wait(node, handle.cancel_goal_async(), 'canceling goal', CANCEL_TIMEOUT)
+    print('Canceling goal...', flush=True, file=context.stdout)
+    response = _wait(node, handle.cancel_goal_async(), 'canceling goal', context, CANCEL_TIMEOUT)
     canceling = list(response.goals_canceling)
     if len(canceling) != 1 or bytes(canceling[0].goal_id.uuid) != bytes(handle.goal_id.uuid):
         raise CliError('Failed to cancel goal')
-    print('Goal canceled.', flush=True)
+    print('Goal canceled.', flush=True, file=context.stdout)

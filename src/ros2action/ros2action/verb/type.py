@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2action.api import absolute, query_graph
 
 HELP = "Print a action's type"
@@ -14,11 +16,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="Name of the ROS action to get info (e.g. '/fibonacci')")
 
 
-def main(args: argparse.Namespace) -> int:
+def main(args: argparse.Namespace, context: VerbContext) -> int:
     action = absolute(args.action_name)
-    found = dict(query_graph(args, action=action).actions()).get(action)
+    found = dict(query_graph(args, action=action, context=context).actions()).get(action)
     if found is None:
         return 1
     for action_type in found:
-        print(action_type)
+        print(action_type, file=context.stdout)
     return 0

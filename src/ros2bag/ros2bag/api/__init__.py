@@ -3,11 +3,29 @@
 from __future__ import annotations
 
 import argparse
-from typing import Any
+import os
+from typing import Any, NoReturn
+
+from ros2cli.verb_context import VerbContext
 
 _DURATION_KEYS = ('deadline', 'lifespan', 'liveliness_lease_duration')
 _POLICY_KEYS = {'history': 'QoSHistoryPolicy', 'reliability': 'QoSReliabilityPolicy',
                 'durability': 'QoSDurabilityPolicy', 'liveliness': 'QoSLivelinessPolicy'}
+
+
+def exit_now(result: int | str, context: VerbContext) -> NoReturn:
+    """End the `ros2 bag` process with `result` as `ros2` would (a string: on the verb's stderr,
+    status 1), without Python's and the libraries' teardown (the player's or recorder's context
+    is shut down: Fast DDS's static teardown is skipped). Only once everything is closed."""
+    code = result if isinstance(result, int) else 1
+    try:
+        if isinstance(result, str):
+            print(result, file=context.stderr)
+        context.stdout.flush()
+        context.stderr.flush()
+    except (BrokenPipeError, ValueError):
+        pass  # nobody reads any more (`| head`), or a stream was closed
+    os._exit(code)
 
 
 def print_error(message: str) -> str:

@@ -8,9 +8,7 @@ import argparse
 def add_storage_preset_arguments(parser: argparse.ArgumentParser, default: str) -> None:
     """`-s/--storage` and `--storage-preset-profile`, whose help lists each storage's presets
     (upstream's storage plugins add theirs: `zstd_small` for MCAP, `resilient` for SQLite3)."""
-    from rosbag2_py._bag_files import STORAGE_PRESETS
-
-    from rosbag2_py import get_registered_writers
+    from rosbag2_py import STORAGE_PRESETS, get_registered_writers
 
     parser.add_argument('-s', '--storage', default=default,
                         choices=sorted(get_registered_writers()),

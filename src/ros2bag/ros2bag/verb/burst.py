@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2bag.api import print_error
 from ros2bag.verb.play import add_player_arguments, play_options
 
@@ -15,17 +17,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.set_defaults(_main=main)
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from rosbag2_py import Player
 
     options = play_options(args)
     if isinstance(options, str):
         return options
-    from rosbag2_py._session import exit_now
+    from ros2bag.api import exit_now
 
     try:
         Player(args.log_level).burst(*options, args.num_messages)
         result: int | str = 0
     except RuntimeError as failure:
         result = print_error(str(failure))
-    exit_now(result)  # the player's context is shut down: skip Fast DDS's static teardown
+    exit_now(result, context)  # the player's context is shut down: skip Fast DDS's static teardown

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2bag.api import print_error
 
 
@@ -20,7 +22,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.set_defaults(_main=main)
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from rosbag2_py import StorageOptions, bag_rewrite
 
     inputs = []

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2bag.api import print_error
 
 
@@ -25,7 +27,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.set_defaults(_main=main)
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from rosbag2_py import Info, SequentialReader, StorageOptions
 
     try:
@@ -41,7 +43,7 @@ def main(args: argparse.Namespace) -> int | str:
         for information in metadata.topics_with_message_count:
             topic = information.topic_metadata
             if not (topic.name.endswith('/_service_event') and '/srv/' in topic.type):
-                print(topic.name)
+                print(topic.name, file=context.stdout)
         return 0
-    print(metadata)
+    print(metadata, file=context.stdout)
     return 0

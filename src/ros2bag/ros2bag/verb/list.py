@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 PLUGIN_TYPES = ('storage', 'converter', 'compressor', 'decompressor')
 # (name, description, type, base class) per storage id / compression format.
 _STORAGE = {
@@ -43,15 +45,15 @@ def plugins(plugin_type: str) -> list[tuple[str, str, str, str]]:
     return []
 
 
-def main(args: argparse.Namespace) -> int:
+def main(args: argparse.Namespace, context: VerbContext) -> int:
     if args.verbose:
-        print(f'available {args.plugin_type} plugins are:')
+        print(f'available {args.plugin_type} plugins are:', file=context.stdout)
     for name, description, type_name, base_class in plugins(args.plugin_type):
         if not args.verbose:
-            print(name)
+            print(name, file=context.stdout)
             continue
-        print(f'name: {name}')
-        print(f'\t{description}')
-        print(f'\ttype: {type_name}')
-        print(f'\tbase_class: {base_class}')
+        print(f'name: {name}', file=context.stdout)
+        print(f'\t{description}', file=context.stdout)
+        print(f'\ttype: {type_name}', file=context.stdout)
+        print(f'\tbase_class: {base_class}', file=context.stdout)
     return 0

@@ -9,6 +9,8 @@ from __future__ import annotations
 import argparse
 import re
 
+from ros2cli.verb_context import VerbContext
+
 from ros2bag.api import (
     add_qos_overrides_argument,
     check_positive_float,
@@ -173,17 +175,17 @@ def play_options(args: argparse.Namespace):
                           storage_config_uri=config), options
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from rosbag2_py import Player
 
     options = play_options(args)
     if isinstance(options, str):
         return options
-    from rosbag2_py._session import exit_now
+    from ros2bag.api import exit_now
 
     try:
         Player(args.log_level).play(*options)
         result: int | str = 0
     except RuntimeError as failure:
         result = print_error(str(failure))
-    exit_now(result)  # the player's context is shut down: skip Fast DDS's static teardown
+    exit_now(result, context)  # the player's context is shut down: skip Fast DDS's static teardown

@@ -11,6 +11,8 @@ import datetime
 import os
 import re
 
+from ros2cli.verb_context import VerbContext
+
 from ros2bag.api import add_qos_overrides_argument, load_qos_overrides, print_error
 from ros2bag.verb import add_storage_preset_arguments
 
@@ -222,7 +224,7 @@ def _options(args: argparse.Namespace, uri: str, overrides: dict):
     return storage, record
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     uri = args.output or datetime.datetime.now().strftime('rosbag2_%Y_%m_%d-%H_%M_%S')
     error = validate_parsed_arguments(args, uri)
     if error:
@@ -233,8 +235,7 @@ def main(args: argparse.Namespace) -> int | str:
             overrides = load_qos_overrides(args.qos_profile_overrides_path)
         except ValueError as failure:
             return print_error(str(failure))
-    from rosbag2_py._session import exit_now
-
+    from ros2bag.api import exit_now
     from rosbag2_py import Recorder
 
     storage, record = _options(args, uri, overrides)
@@ -246,4 +247,4 @@ def main(args: argparse.Namespace) -> int | str:
     # The bag is closed and the context shut down (its log files flushed): only static
     # teardown is left, where Fast DDS's DomainParticipantFactory destructor sleeps 100 ms.
     # Exit now, so that a `ros2 bag info` typed right after Ctrl-C meets a finished recorder.
-    exit_now(result)
+    exit_now(result, context)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2bag.api import print_error
 
 
@@ -17,7 +19,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.set_defaults(_main=main)
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from rosbag2_py import Info, Reindexer, StorageOptions
 
     try:
@@ -26,5 +28,5 @@ def main(args: argparse.Namespace) -> int | str:
     except RuntimeError as error:
         return print_error(str(error))
     print(f"Reindexed '{args.bag_path}': {metadata.message_count} messages in "
-          f'{len(metadata.relative_file_paths)} file(s)')
+          f'{len(metadata.relative_file_paths)} file(s)', file=context.stdout)
     return 0

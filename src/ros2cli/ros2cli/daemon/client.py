@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from ros2cli.daemon import protocol
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError
 
 START_BOUND = 15.0     # from spawning to accepting connections (the import of rclpy is most)
 ANSWER_BOUND = 30.0    # a fresh daemon answers once discovery has settled (a few seconds)

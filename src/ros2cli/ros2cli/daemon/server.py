@@ -243,8 +243,7 @@ class DaemonServer(socketserver.ThreadingUnixStreamServer):
                 pass
             cancelled.set()
         threading.Thread(target=watch_cli, daemon=True).start()
-        code = verb_host.run([str(word) for word in request.get('argv', [])],
-                         verb_host.Session(context, int(request.get('pid', 0)), send, cancelled))
+        code = verb_host.run(request, context, send, cancelled)
         self.loaded.changed()  # stamp what the verb loaded, to notice a later rebuild
         send('exit', str(code))
 
@@ -279,7 +278,6 @@ def main(argv: list[str] | None = None) -> int:
     announce_often(fresh_port=False)
     cache = GraphCache()
     server = DaemonServer(path, cache, is_worker)
-    verb_host.install_streams()
     stopping = threading.Event()
 
     def on_signal(signum: int, frame: Any) -> None:

@@ -1,4 +1,4 @@
-"""The CLI's side of a one-shot verb run by the daemon: send the command line, show the output.
+"""The CLI's side of a one-shot verb run by the daemon: send the parsed verb, show its output.
 
 The daemon (server.py) runs the verb when its environment is the CLI's, else hands it to its
 worker for the CLI's environment (a sourced overlay): the answer then names the worker's
@@ -8,26 +8,35 @@ the CLI runs the verb itself (cli.py). The daemon's side is verb_host.py. Import
 
 from __future__ import annotations
 
+import argparse
 import os
 import socket
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 from ros2cli.daemon import protocol
 
 
-def run_in_daemon(argv: list[str]) -> int | None:
-    """The verb's exit code, run by this shell's daemon or its worker; None when the CLI must
-    run it (no daemon, not ready, another version, stale code, a worker still starting)."""
+def run_in_daemon(func: Callable[..., Any], args: argparse.Namespace) -> int | None:
+    """The exit code of the verb `func` (a verb module's main) run with the parsed `args` by
+    this shell's daemon or its worker; None when the CLI must run it (no daemon, not ready,
+    another version, stale code, a worker still starting, arguments that are not plain data)."""
     try:
         path = protocol.socket_path()
     except OSError:
         return None
-    request = {'op': 'run', 'argv': argv, 'pid': os.getpid(),
-               'environment': protocol.environment(), 'version': protocol.version(),
+    values = {name: value for name, value in vars(args).items() if not name.startswith('_')}
+    request = {'op': 'run', 'module': func.__module__, 'main': func.__name__, 'args': values,
+               'pid': os.getpid(), 'environment': protocol.environment(),
+               'version': protocol.version(),
                # For a worker the daemon starts: this process's interpreter and variables.
                'executable': sys.executable, 'env': dict(os.environ)}
+    try:
+        protocol.encode(request)
+    except (TypeError, ValueError):  # e.g. an open file: only this process can use it
+        return None
     outcome = _run(path, request)
     if isinstance(outcome, dict) and outcome.get('worker'):
         outcome = _run(Path(outcome['worker']), request)

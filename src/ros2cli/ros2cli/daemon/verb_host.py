@@ -3,10 +3,12 @@
 A verb with a node of its own used to create a DDS participant and wait for discovery: 0.3 to
 2 s, depending on when the other participants' announcements arrive. The daemon's participant
 met the graph long ago, so a verb that does one thing and exits (its module says which runs
-with `runs_in_daemon(args)`) runs there, in a thread. Its node is made in the daemon's
-context (the same participant, whose endpoints the other nodes match within milliseconds),
-its stdout and stderr stream back to the CLI as they are written, and it stops when the CLI
-goes away (Ctrl-C).
+with `runs_in_daemon(args)`) runs there, in a thread. The CLI has parsed the command line: it
+sends the verb's module, its main and the parsed arguments, and the daemon calls
+main(args, context) with a VerbContext whose streams write to the CLI's terminal (as they are
+written), whose rclpy context is the daemon's (its node is a node of the daemon's participant,
+whose endpoints the other nodes match within milliseconds), and whose `cancelled` is set when
+the CLI goes away (Ctrl-C).
 
 A CLI in another environment (a sourced overlay: other interfaces, other code) is served by
 the daemon's worker for that environment (server.py), a process started with the CLI's own
@@ -17,6 +19,8 @@ package): no answer from stale code. The CLI's side is verb_client.py.
 
 from __future__ import annotations
 
+import argparse
+import importlib
 import io
 import os
 import sys
@@ -24,74 +28,43 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
-_local = threading.local()
+from ros2cli.verb_context import VerbContext, run_main
 
 
-class Session:
-    """The verb running in this thread: its CLI's pid, the daemon's context, its output."""
+class CliStream(io.TextIOBase):
+    """One of the CLI's terminal streams (`out` or `err`), seen from the daemon: each write is
+    sent to the CLI at once."""
 
-    def __init__(self, context: Any, pid: int, send: Callable[[str, str], None],
-                 cancelled: threading.Event) -> None:
-        self.context = context
-        self.pid = pid
-        self.send = send
-        self.cancelled = cancelled
-        self._interrupted = False
-
-    def take_interrupt(self) -> bool:
-        """True once after the CLI has left or pressed Ctrl-C: the verb then gets one
-        KeyboardInterrupt, as from one SIGINT (send_goal still waits for its cancel)."""
-        if self.cancelled.is_set() and not self._interrupted:
-            self._interrupted = True
-            return True
-        return False
-
-
-def session() -> Session | None:
-    """The daemon's session of the verb this thread runs; None in the CLI (and elsewhere)."""
-    return getattr(_local, 'session', None)
-
-
-class _ThreadStream(io.TextIOBase):
-    """The daemon's sys.stdout/stderr: a verb thread writes to its CLI, others to the log."""
-
-    def __init__(self, log: Any, kind: str) -> None:
-        self._log = log
+    def __init__(self, send: Callable[[str, str], None], kind: str) -> None:
+        self._send = send
         self._kind = kind
 
-    def write(self, text: str) -> int:
-        current = session()
-        if current is None:
-            return self._log.write(text)
-        current.send(self._kind, text)
-        return len(text)
+    def writable(self) -> bool:
+        return True
 
-    def flush(self) -> None:
-        if session() is None:
-            self._log.flush()
+    def write(self, text: str) -> int:
+        self._send(self._kind, text)
+        return len(text)
 
     def isatty(self) -> bool:
         return False
 
 
-def install_streams() -> None:
-    sys.stdout = _ThreadStream(sys.stdout, 'out')
-    sys.stderr = _ThreadStream(sys.stderr, 'err')
-
-
-def run(argv: list[str], current: Session) -> int:
-    """Parse and run the verb as `ros2` would, in this thread, for `current`'s CLI."""
-    from ros2cli import cli
-    _local.session = current
+def run(request: dict[str, Any], ros_context: Any, send: Callable[[str, str], None],
+        cancelled: threading.Event) -> int:
+    """Run the verb the CLI parsed (`module`, `main`, `args` of the request) in this thread."""
+    context = VerbContext(CliStream(send, 'out'), CliStream(send, 'err'),
+                          int(request.get('pid', 0)), ros_context, cancelled)
     try:
-        result = cli.run_here(argv)
-    except SystemExit as done:  # argparse: --help, a bad argument
-        result = done.code if isinstance(done.code, int) else (0 if done.code is None else 1)
+        func = getattr(importlib.import_module(str(request['module'])), str(request['main']))
+        args = argparse.Namespace(**request['args'])
+    except (KeyError, TypeError, ImportError, AttributeError) as error:
+        print(f'The ros2 daemon cannot run this verb: {error}', file=context.stderr)
+        return 1
+    try:
+        return run_main(func, args, context)
     except KeyboardInterrupt:  # the CLI went away
-        result = 2
-    finally:
-        _local.session = None
-    return result if isinstance(result, int) else 1
+        return 2
 
 
 class LoadedCode:

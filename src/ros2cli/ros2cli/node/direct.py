@@ -14,38 +14,33 @@ from contextlib import contextmanager
 from typing import Any
 
 from ros2cli.node import NODE_NAME_PREFIX
-from ros2cli.node.discovery import (
-    create_node,
-    make_node,
-    meet_graph_replacing,
-    stop_if_cli_left,
-)
+from ros2cli.node.discovery import create_node, make_node, meet_graph_replacing
+from ros2cli.verb_context import VerbContext
 
 
 @contextmanager
-def cli_node(name: str | None = None, discover: bool = True,
+def cli_node(context: VerbContext, name: str | None = None, discover: bool = True,
              spin_time: float | None = None) -> Iterator[Any]:
-    """A hidden node `_ros2cli_<pid>` in a fresh context, torn down on exit.
+    """A hidden node `_ros2cli_<pid>` for the verb running in `context`, torn down on exit.
 
-    With `discover`, make sure the node has met the rest of the graph first (see _meet_graph),
-    for at most `spin_time` seconds when given (a verb's --spin-time).
+    In the CLI: a node in a fresh rclpy context; with `discover`, it has met the rest of the
+    graph first (see meet_graph_replacing), for at most `spin_time` seconds when given (a
+    verb's --spin-time). In the daemon (`context.in_daemon`): a node of the daemon's
+    participant, which knows the graph already.
     """
     import rclpy
 
-    from ros2cli.daemon.verb_host import session
-    running_for = session()
-    node_name = name or f'{NODE_NAME_PREFIX}_{running_for.pid if running_for else os.getpid()}'
-    if running_for is not None:
-        # In the daemon, for a CLI: a node of the daemon's participant, which knows the graph.
-        context = running_for.context
-        node = create_node(node_name, context)
+    node_name = name or f'{NODE_NAME_PREFIX}_{context.pid}'
+    if context.in_daemon:
+        ros_context = context.ros_context
+        node = create_node(node_name, ros_context)
     else:
-        context, node = make_node(node_name)
+        ros_context, node = make_node(node_name)
     try:
-        if discover and running_for is None:
+        if discover and not context.in_daemon:
             bound = 1.8 if spin_time is None else min(1.8, spin_time)
-            context, node, _ = meet_graph_replacing(context, node, lambda: make_node(node_name),
-                                           bound=bound)
+            ros_context, node, _ = meet_graph_replacing(
+                ros_context, node, lambda: make_node(node_name), bound=bound)
         yield node
     finally:
         # Shut the executor of spin_once down while its context lives: left to the garbage
@@ -55,13 +50,15 @@ def cli_node(name: str | None = None, discover: bool = True,
         if executor is not None:
             executor.shutdown(timeout_sec=1.0)
         node.destroy_node()
-        if running_for is None:
-            rclpy.try_shutdown(context=context)
+        if not context.in_daemon:
+            rclpy.try_shutdown(context=ros_context)
 
 
-def spin_once(node: Any, timeout: float) -> None:
-    """Process pending callbacks of `node` for at most `timeout` seconds."""
-    stop_if_cli_left()
+def spin_once(node: Any, timeout: float, context: VerbContext | None = None) -> None:
+    """Process pending callbacks of `node` for at most `timeout` seconds; first, in a verb the
+    daemon runs, end it (KeyboardInterrupt) when its CLI has left."""
+    if context is not None:
+        context.check_cancelled()
     executor = getattr(node, '_cli_executor', None)
     if executor is None:
         executor = _cli_executor_class()(context=node.context)

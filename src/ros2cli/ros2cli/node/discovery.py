@@ -11,6 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 from ros2cli.names import full_node_name
+from ros2cli.verb_context import VerbContext
 
 
 def meet_graph(name: str, bound: float) -> tuple[Any, Any, bool]:
@@ -110,7 +111,8 @@ def graph_snapshot(node: Any) -> tuple:
 
 
 def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: float = 0.4,
-                   bound: float | None = None, everyone_met: bool = False) -> bool:
+                   bound: float | None = None, everyone_met: bool = False,
+                   context: VerbContext | None = None) -> bool:
     """Let discovery run until the graph has stopped changing for `settle` seconds.
 
     Without a daemon a fresh node knows nothing: poll the graph (cheap, local caches) and return
@@ -121,12 +123,12 @@ def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: f
     sometimes far apart under load).
     The default bound (None) is 2 s for listings, 4 s while looking for something that may
     just not be discovered yet (a loaded machine can take that long); a verb passes its
-    --spin-time. Returns whether `ready()` held.
+    --spin-time. Returns whether `ready()` held. A verb passes its `context`: in the daemon
+    the wait ends when its CLI leaves, and needs no settling.
     """
-    from ros2cli.daemon.verb_host import session
     if bound is None:
         bound = 2.0 if ready is None else 4.0
-    if session() is not None:
+    if context is not None and context.in_daemon:
         settle = 0.0  # the daemon's participant: its graph settled long ago
     start = time.monotonic()
     own = node.get_fully_qualified_name()
@@ -146,7 +148,8 @@ def wait_for_graph(node: Any, ready: Callable[[], bool] | None = None, settle: f
             return True
         if now - start >= bound:
             return ok
-        stop_if_cli_left()
+        if context is not None:
+            context.check_cancelled()
         time.sleep(0.02)
 
 
@@ -158,20 +161,17 @@ def _has_endpoints(node: Any, name: str, namespace: str) -> bool:
                     or node.get_service_names_and_types_by_node(name, namespace))
     except NodeNameNonExistentError:  # it left between listing the names and asking for this
         return False
-def wait_until(predicate: Callable[[], bool], timeout: float, step: float = 0.02) -> bool:
+
+
+def wait_until(predicate: Callable[[], bool], timeout: float, step: float = 0.02,
+               context: VerbContext | None = None) -> bool:
+    """Until `predicate()` holds, for at most `timeout` seconds; whether it held. A verb passes
+    its `context`: in the daemon the wait ends when its CLI leaves."""
     deadline = time.monotonic() + timeout
     while not predicate():
         if time.monotonic() >= deadline:
             return False
-        stop_if_cli_left()
+        if context is not None:
+            context.check_cancelled()
         time.sleep(step)
     return True
-
-
-def stop_if_cli_left() -> None:
-    """In the daemon, a KeyboardInterrupt once the CLI it runs the verb for has gone: its
-    Ctrl-C ends the verb there too. Called by every wait of a verb."""
-    from ros2cli.daemon.verb_host import session
-    running_for = session()
-    if running_for is not None and running_for.take_interrupt():
-        raise KeyboardInterrupt

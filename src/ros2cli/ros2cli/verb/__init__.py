@@ -1,45 +1,4 @@
-"""What every verb shares: the error a verb raises and the graph verbs' common options.
-
-A verb module (`<package>/verb/<verb>.py`) has HELP, add_arguments(parser), main(args) and,
-when the daemon may run it for the CLI, runs_in_daemon(args). Graph names are in
-ros2cli.names, interface types in ros2cli.interface_types, the CLI node and graph waits in
-ros2cli.node; message <-> YAML conversion is rosidl_runtime_py's (ros2cli.message_yaml adds
-the command line's YAML parsing). Heavy modules (rclpy, yaml, the generated interfaces) are
-imported inside the functions that need them, so `ros2 interface show` or `ros2 run` never
-pay for DDS.
+"""The `ros2 daemon` command's verbs (ros2cli.verb.daemon), one module each, in the shape of every
+command's verbs: HELP, add_arguments(parser), main(args, context). What a verb gets and gives
+back is in ros2cli.verb_context; the graph verbs' common options in ros2cli.command.
 """
-
-from __future__ import annotations
-
-from collections.abc import Callable
-from typing import Any
-
-
-class CliError(Exception):
-    """A verb failed: the message goes to stderr and `ros2` exits with 1."""
-
-
-def add_graph_verb(verbs: Any, name: str, func: Callable, help_text: str,
-                   hidden_flag: str | None = None, hidden_dest: str | None = None) -> Any:
-    """A verb parser with the options every graph verb shares (as ros2cli's verbs do)."""
-    import argparse
-
-    parser = verbs.add_parser(name, help=help_text, description=help_text)
-    if hidden_flag:  # also accepted after the verb, as ros2cli does
-        parser.add_argument(hidden_flag, action='store_true', dest=hidden_dest,
-                            help=argparse.SUPPRESS)
-    # `--spin-time S` (ros2cli's discovery time without a daemon) bounds the discovery waits:
-    # each verb passes args.spin_time on (cli_node, graph_source, wait_for_graph).
-    parser.add_argument('--spin-time', type=_non_negative_seconds, default=None,
-                        help='Longest wait in seconds for a named entity to appear (default: '
-                        '1 with the daemon; with --no-daemon the discovery time: 2 to list, 4 '
-                        'to find)')
-    parser.add_argument('-s', '--use-sim-time', action='store_true', help=argparse.SUPPRESS)
-    parser.add_argument('--no-daemon', action='store_true',
-                        help='Do not spawn nor use an already running daemon')
-    parser.set_defaults(_main=func)
-    return parser
-
-
-def _non_negative_seconds(text: str) -> float:
-    return max(0.0, float(text))

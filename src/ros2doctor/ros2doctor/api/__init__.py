@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-import sys
 import warnings
 from dataclasses import dataclass, field
+from typing import TextIO
 
 
 @dataclass
@@ -60,6 +60,5 @@ def format_report(report: Report) -> str:
     return '\n'.join(lines)
 
 
-def print_report(report: Report) -> None:
-    print(format_report(report))
-    sys.stdout.flush()
+def print_report(report: Report, out: TextIO) -> None:
+    print(format_report(report), file=out, flush=True)

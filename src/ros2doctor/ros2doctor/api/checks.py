@@ -198,11 +198,12 @@ def graph() -> Graph:
         from ros2cli.graph import get_graph
         from ros2cli.node.direct import cli_node
         from ros2cli.node.discovery import wait_for_graph
+        from ros2cli.verb_context import VerbContext
         # The daemon's settled graph says what exists; our own node (which the QoS profiles
         # need) must then see at least every endpoint the daemon sees before it is read.
         expected = get_graph(detail=False)
         found = Graph()
-        with cli_node() as node:
+        with cli_node(VerbContext.here()) as node:
             def sees_everything() -> bool:
                 for name, _ in expected.topics(include_hidden=True):
                     publishers, subscribers = expected.topic_counts(name)

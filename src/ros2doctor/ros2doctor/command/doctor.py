@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     group = parser.add_mutually_exclusive_group(required=False)
@@ -21,7 +23,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.set_defaults(_main=main)
 
 
-def _print_reports(makers, categories=None) -> None:
+def _print_reports(makers, categories: list[str] | None, context: VerbContext) -> None:
     from ros2doctor.api import Result, print_report
     for category, make in makers:
         if categories is not None and category not in categories:
@@ -32,17 +34,17 @@ def _print_reports(makers, categories=None) -> None:
             Result().fail(f'Unable to report {category}: {" ".join(str(error).split())}')
             continue
         for report in reports:
-            print_report(report)
+            print_report(report, context.stdout)
 
 
-def main(args: argparse.Namespace) -> int:
+def main(args: argparse.Namespace, context: VerbContext) -> int:
     from ros2doctor.api.checks import CHECKS, REPORTS
 
     def wanted(category: str) -> bool:
         return not (args.exclude_packages and category == 'package')
 
     if args.report:
-        _print_reports(REPORTS, [c for c, _ in REPORTS if wanted(c)])
+        _print_reports(REPORTS, [c for c, _ in REPORTS if wanted(c)], context)
         return 0
 
     failed: list[str] = []
@@ -57,10 +59,10 @@ def main(args: argparse.Namespace) -> int:
             if category not in failed:
                 failed.append(category)
     if fails:
-        print(f'\n{fails}/{total} check(s) failed\n')
-        print('Failed modules:', *failed)
+        print(f'\n{fails}/{total} check(s) failed\n', file=context.stdout)
+        print('Failed modules:', *failed, file=context.stdout)
     else:
-        print(f'\nAll {total} checks passed\n')
+        print(f'\nAll {total} checks passed\n', file=context.stdout)
     if args.report_failed and fails:
-        _print_reports(REPORTS, failed)
+        _print_reports(REPORTS, failed, context)
     return 0

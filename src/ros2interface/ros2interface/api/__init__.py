@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError
 
 KINDS = ('msg', 'srv', 'action')
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2interface.api import interface_packages, interfaces_of
 
 HELP = 'List all interface types available'
@@ -28,16 +30,16 @@ def _names_by_kind(kind: str) -> dict[str, list[str]]:
     return result
 
 
-def main(args: argparse.Namespace) -> int:
+def main(args: argparse.Namespace, context: VerbContext) -> int:
     sections = [('Messages:', 'msg', args.only_msgs), ('Services:', 'srv', args.only_srvs),
                 ('Actions:', 'action', args.only_actions)]
     only = args.only_msgs or args.only_srvs or args.only_actions
     for title, kind, chosen in sections:
         if only and not chosen:
             continue
-        print(title)
+        print(title, file=context.stdout)
         by_package = _names_by_kind(kind)
         for package in sorted(by_package):
             for name in by_package[package]:
-                print(f'    {package}/{kind}/{name}')
+                print(f'    {package}/{kind}/{name}', file=context.stdout)
     return 0

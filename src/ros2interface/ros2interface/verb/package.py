@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2interface.api import interfaces_of
 
 HELP = 'Output a list of available interface types within one package'
@@ -19,7 +21,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('package_name', help="Name of the ROS package (e.g. 'example_interfaces')")
 
 
-def main(args: argparse.Namespace) -> int:
+def main(args: argparse.Namespace, context: VerbContext) -> int:
     names = interfaces_of(args.package_name)
     chosen = [kind for kind, flag in (('msg', args.only_msgs), ('srv', args.only_srvs),
                                       ('action', args.only_actions)) if flag]
@@ -27,5 +29,5 @@ def main(args: argparse.Namespace) -> int:
         # Upstream lists the chosen kinds one after the other: messages, services, actions.
         names = [n for kind in chosen for n in names if n.split('/', 1)[0] == kind]
     for name in names:
-        print(f'{args.package_name}/{name}')
+        print(f'{args.package_name}/{name}', file=context.stdout)
     return 0

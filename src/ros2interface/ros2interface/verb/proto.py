@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError, VerbContext
 
 from ros2interface.api import KINDS
 
@@ -17,7 +17,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='if true output has no outer quotes.')
 
 
-def main(args: argparse.Namespace) -> int:
+def main(args: argparse.Namespace, context: VerbContext) -> int:
     from ros2cli.interface_types import import_type
 
     from rosidl_runtime_py import message_to_yaml
@@ -39,5 +39,5 @@ def main(args: argparse.Namespace) -> int:
     else:
         instance = interface()
     text = message_to_yaml(instance)
-    print(text if args.no_quotes else f'"{text}"')
+    print(text if args.no_quotes else f'"{text}"', file=context.stdout)
     return 0

@@ -7,7 +7,7 @@ import os
 import re
 import sys
 
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError, VerbContext
 
 from ros2interface.api import KINDS
 
@@ -98,7 +98,9 @@ def _split_comment(text: str) -> tuple[str, str | None]:
     return text, None
 
 
-def _show(identifier: str, comments: bool, nested_comments: bool, level: int) -> None:
+def _show(
+    identifier: str, comments: bool, nested_comments: bool, level: int, context: VerbContext
+) -> None:
     package = identifier.split('/')[0]
     with open(definition_path(identifier)) as handle:
         lines = [Line(package, raw.rstrip()) for raw in handle]
@@ -109,13 +111,13 @@ def _show(identifier: str, comments: bool, nested_comments: bool, level: int) ->
                 continue
             if line.is_field and line.comment is not None:
                 text = line.code.strip()
-        print(f'{chr(9) * level}{text}' if text else '')
+        print(f'{chr(9) * level}{text}' if text else '', file=context.stdout)
         nested = line.nested_type
         if nested:
-            _show(nested, nested_comments, nested_comments, level + 1)
+            _show(nested, nested_comments, nested_comments, level + 1, context)
 
 
-def main(args: argparse.Namespace) -> int:
+def main(args: argparse.Namespace, context: VerbContext) -> int:
     identifier = args.type
     if identifier == '-':
         if sys.stdin.isatty():
@@ -123,5 +125,5 @@ def main(args: argparse.Namespace) -> int:
         identifier = sys.stdin.readline().strip()
     if not identifier:
         raise CliError('the passed value is empty')
-    _show(identifier, args.all_comments or not args.no_comments, args.all_comments, 0)
+    _show(identifier, args.all_comments or not args.no_comments, args.all_comments, 0, context)
     return 0

@@ -6,7 +6,7 @@ import argparse
 import os
 import sys
 
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError, VerbContext
 
 from ros2launch.api import (
     MultipleLaunchFilesError,
@@ -53,7 +53,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.set_defaults(_main=main)
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from launch.launch_description_sources import InvalidLaunchFileError
     arguments: list[str] = []
     if os.path.isfile(args.package_name):

@@ -10,6 +10,8 @@ import argparse
 import time
 from typing import Any
 
+from ros2cli.verb_context import VerbContext
+
 GET_STATE_TYPE = 'lifecycle_msgs/srv/GetState'
 CALL_TIMEOUT = 5.0  # seconds: a listed node that never answers fails instead of hanging
 
@@ -38,16 +40,16 @@ def _managed(graph: Any, include_hidden: bool) -> list[str]:
 
 
 def managed_node_names(args: argparse.Namespace, include_hidden: bool,
-                       wanted: str | None = None) -> list[str]:
+                       wanted: str | None = None, *, context: VerbContext) -> list[str]:
     """Full names of the managed nodes; with `wanted`, wait (within the lookup bound) for it."""
     from ros2cli.graph import graph_source
-    with graph_source(not args.no_daemon, args.spin_time) as source:
+    with graph_source(not args.no_daemon, args.spin_time, context) as source:
         graph = source.graph(ready=None if wanted is None
                              else lambda g: wanted in _managed(g, include_hidden))
     return _managed(graph, include_hidden)
 
 
-def call(node: Any, srv_type: Any, service: str, request: Any) -> Any:
+def call(node: Any, srv_type: Any, service: str, request: Any, context: VerbContext) -> Any:
     """The node's answer, or the exception to report ('Exception while calling service...')."""
     from ros2cli.node.direct import spin_once
     client = node.create_client(srv_type, service)
@@ -60,18 +62,18 @@ def call(node: Any, srv_type: Any, service: str, request: Any) -> Any:
             client.remove_pending_request(future)
             return TimeoutError(f"service '{service}' did not answer within "
                                 f'{CALL_TIMEOUT:g} s')
-        spin_once(node, 0.1)
+        spin_once(node, 0.1, context)
     if future.exception() is not None:
         return future.exception()
     return future.result()
 
 
-def transitions(node: Any, node_name: str, graph: bool = False) -> Any:
+def transitions(node: Any, node_name: str, graph: bool = False, *, context: VerbContext) -> Any:
     """The node's available transitions (with `graph`, its whole transition graph)."""
     from lifecycle_msgs.srv import GetAvailableTransitions
     service = 'get_transition_graph' if graph else 'get_available_transitions'
     result = call(node, GetAvailableTransitions, f'{node_name}/{service}',
-                  GetAvailableTransitions.Request())
+                  GetAvailableTransitions.Request(), context=context)
     return result if isinstance(result, Exception) else list(result.available_transitions)
 
 

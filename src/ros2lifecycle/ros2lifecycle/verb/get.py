@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import argparse
-import sys
+
+from ros2cli.verb_context import VerbContext
 
 from ros2lifecycle.api import (
     absolute,
@@ -25,22 +26,26 @@ def runs_in_daemon(_args: argparse.Namespace) -> bool:
     (ros2cli.daemon.verb_host)."""
     return True
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from lifecycle_msgs.srv import GetState
     from ros2cli.node.direct import cli_node
     wanted = absolute(args.node_name)
-    names = managed_node_names(args, args.include_hidden_nodes, wanted)
+    names = managed_node_names(args, args.include_hidden_nodes, wanted, context=context)
     if wanted is not None and wanted not in names:
         return 'Node not found'
-    with cli_node(spin_time=args.spin_time) as node:
-        states = {name: call(node, GetState, f'{name}/get_state', GetState.Request())
-                  for name in ([wanted] if wanted else names)}
+    with cli_node(context, spin_time=args.spin_time) as node:
+        states = {
+            name: call(node, GetState, f'{name}/get_state', GetState.Request(), context=context)
+            for name in ([wanted] if wanted else names)
+        }
     for name, state in sorted(states.items()):
         if isinstance(state, Exception):
-            print(exception_text(name, state), file=sys.stderr)
+            print(exception_text(name, state), file=context.stderr)
             if wanted:
                 return 1
             continue
         prefix = '' if wanted else f'{name}: '
-        print(f'{prefix}{state.current_state.label} [{state.current_state.id}]')
+        print(
+            f'{prefix}{state.current_state.label} [{state.current_state.id}]', file=context.stdout
+        )
     return 0

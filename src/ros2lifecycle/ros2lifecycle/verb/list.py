@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2lifecycle.api import (
     absolute,
     add_node_name,
@@ -26,17 +28,17 @@ def runs_in_daemon(_args: argparse.Namespace) -> bool:
     (ros2cli.daemon.verb_host)."""
     return True
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from ros2cli.node.direct import cli_node
     wanted = absolute(args.node_name)
-    if wanted not in managed_node_names(args, args.include_hidden_nodes, wanted):
+    if wanted not in managed_node_names(args, args.include_hidden_nodes, wanted, context=context):
         return 'Node not found'
-    with cli_node(spin_time=args.spin_time) as node:
-        found = transitions(node, wanted, graph=args.all)
+    with cli_node(context, spin_time=args.spin_time) as node:
+        found = transitions(node, wanted, graph=args.all, context=context)
     if isinstance(found, Exception):
         return exception_text(args.node_name, found)
     for item in found:
         print(f'- {item.transition.label} [{item.transition.id}]\n'
               f'\tStart: {item.start_state.label}\n'
-              f'\tGoal: {item.goal_state.label}')
+              f'\tGoal: {item.goal_state.label}', file=context.stdout)
     return 0

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2lifecycle.api import managed_node_names
 
 HELP = 'Output a list of nodes with lifecycle'
@@ -16,10 +18,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='Only display the number of nodes discovered')
 
 
-def main(args: argparse.Namespace) -> int:
-    names = managed_node_names(args, args.all)
+def main(args: argparse.Namespace, context: VerbContext) -> int:
+    names = managed_node_names(args, args.all, context=context)
     if args.count_nodes:
-        print(len(names))
+        print(len(names), file=context.stdout)
     for name in names if not args.count_nodes else ():
-        print(name)
+        print(name, file=context.stdout)
     return 0

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import argparse
-import sys
+
+from ros2cli.verb_context import VerbContext
 
 from ros2lifecycle.api import (
     absolute,
@@ -27,14 +28,14 @@ def runs_in_daemon(_args: argparse.Namespace) -> bool:
     (ros2cli.daemon.verb_host)."""
     return True
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from lifecycle_msgs.srv import ChangeState
     from ros2cli.node.direct import cli_node
     wanted = absolute(args.node_name)
-    if wanted not in managed_node_names(args, args.include_hidden_nodes, wanted):
+    if wanted not in managed_node_names(args, args.include_hidden_nodes, wanted, context=context):
         return 'Node not found'
-    with cli_node(spin_time=args.spin_time) as node:
-        available = transitions(node, wanted)
+    with cli_node(context, spin_time=args.spin_time) as node:
+        available = transitions(node, wanted, context=context)
         if isinstance(available, Exception):
             return exception_text(args.node_name, available)
         # By label first, then by id, as ros2lifecycle: '3' never shadows a label.
@@ -46,11 +47,11 @@ def main(args: argparse.Namespace) -> int | str:
             return 'Unknown transition requested, available ones are:' + ''.join(
                 f'\n- {t.transition.label} [{t.transition.id}]' for t in available)
         result = call(node, ChangeState, f'{wanted}/change_state',
-                      ChangeState.Request(transition=chosen))
+                      ChangeState.Request(transition=chosen), context=context)
     if isinstance(result, Exception):
-        print(exception_text(args.node_name, result), file=sys.stderr)
+        print(exception_text(args.node_name, result), file=context.stderr)
     elif result.success:
-        print('Transitioning successful')
+        print('Transitioning successful', file=context.stdout)
     else:
-        print('Transitioning failed', file=sys.stderr)
+        print('Transitioning failed', file=context.stderr)
     return 0

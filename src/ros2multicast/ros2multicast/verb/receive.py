@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2multicast.api import receive
 from ros2multicast.verb import add_group_argument, add_port_argument
 
@@ -27,8 +29,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='Give up after this many seconds (default: wait until Ctrl-C)')
 
 
-def main(args: argparse.Namespace) -> int | str:
-    print('Waiting for UDP multicast datagram...', flush=True)
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
+    print('Waiting for UDP multicast datagram...', flush=True, file=context.stdout)
     try:
         data, (host, port) = receive(group=args.group, port=args.port, timeout=args.timeout)
     except TimeoutError:
@@ -37,5 +39,5 @@ def main(args: argparse.Namespace) -> int | str:
         return 0
     except OSError as error:
         return f'Could not receive on {args.group}:{args.port}: {error.strerror or error}'
-    print(f"Received from {host}:{port}: '{data.decode('utf-8', 'replace')}'")
+    print(f"Received from {host}:{port}: '{data.decode('utf-8', 'replace')}'", file=context.stdout)
     return 0

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2multicast.api import MAX_TTL, MESSAGE, send
 from ros2multicast.verb import add_group_argument, add_port_argument
 
@@ -28,8 +30,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='The multicast TTL (0 or 1; default 0: loopback only)')
 
 
-def main(args: argparse.Namespace) -> int | str:
-    print('Sending one UDP multicast datagram...')
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
+    print('Sending one UDP multicast datagram...', file=context.stdout)
     try:
         send(MESSAGE, group=args.group, port=args.port, ttl=args.ttl)
     except OSError as error:

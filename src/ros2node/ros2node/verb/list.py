@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import argparse
-import sys
+
+from ros2cli.verb_context import VerbContext
 
 HELP = 'Output a list of available nodes'
 
@@ -19,15 +20,15 @@ DUPLICATE_WARNING = ('WARNING: Be aware that there are nodes in the graph that s
                      'name, which can have unintended side effects.')
 
 
-def main(args: argparse.Namespace) -> int:
+def main(args: argparse.Namespace, context: VerbContext) -> int:
     from ros2cli.graph import graph_source
-    with graph_source(not args.no_daemon, args.spin_time) as source:
+    with graph_source(not args.no_daemon, args.spin_time, context) as source:
         full = source.graph().node_names(args.all)
     if args.count_nodes:
-        print(len(full))
+        print(len(full), file=context.stdout)
         return 0
     if len(set(full)) != len(full):
-        print(DUPLICATE_WARNING, file=sys.stderr)
+        print(DUPLICATE_WARNING, file=context.stderr)
     for name in full:
-        print(name)
+        print(name, file=context.stdout)
     return 0

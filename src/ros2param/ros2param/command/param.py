@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 import importlib
 
-from ros2cli.verb import add_graph_verb
+from ros2cli.command import add_graph_verb
 
 VERBS = ('list', 'get', 'set', 'describe', 'dump', 'load', 'delete')
 

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import os
 
+from ros2cli.verb_context import VerbContext
+
 from ros2param.api import add_timeout, call, find_node
 
 HELP = 'Show all of the parameters of a node in a YAML file format'
@@ -27,31 +29,31 @@ def _insert(tree: dict, name: str, value) -> None:
         tree[name] = value
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     import yaml
     from rcl_interfaces.srv import GetParameters, ListParameters
     from rclpy.parameter import parameter_value_to_python
     from ros2cli.node.direct import cli_node
     if args.output_dir is not None and not os.path.isdir(args.output_dir):
         return f"Output directory '{args.output_dir}' does not exist"
-    target = find_node(args)
+    target = find_node(args, context=context)
     if target is None:
         return 'Node not found'
-    with cli_node(spin_time=args.spin_time) as node:
+    with cli_node(context, spin_time=args.spin_time) as node:
         listed = call(node, ListParameters, f'{target}/list_parameters',
-                       ListParameters.Request())
+                       ListParameters.Request(), context=context)
         names = sorted(listed.result.names)
         got = call(node, GetParameters, f'{target}/get_parameters',
-                    GetParameters.Request(names=names))
+                    GetParameters.Request(names=names), context=context)
     parameters: dict = {}
     for name, value in zip(names, got.values, strict=False):
         _insert(parameters, name, parameter_value_to_python(value))
     text = yaml.dump({target: {'ros__parameters': parameters}}, default_flow_style=False)
     if args.output_dir is None:
-        print(text)
+        print(text, file=context.stdout)
         return 0
     path = os.path.join(args.output_dir, target.lstrip('/').replace('/', '__') + '.yaml')
-    print(f'Saving to:  {path}')
+    print(f'Saving to:  {path}', file=context.stdout)
     with open(path, 'w', encoding='utf-8') as output:
         output.write(text)
     return 0

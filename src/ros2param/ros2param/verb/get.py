@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2param.api import call, find_node
 
 HELP = 'Get parameter'
@@ -30,20 +32,20 @@ def runs_in_daemon(_args: argparse.Namespace) -> bool:
     return True
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from rcl_interfaces.srv import GetParameters
     from ros2cli.node.direct import cli_node
-    target = find_node(args)
+    target = find_node(args, context=context)
     if target is None:
         return 'Node not found'
-    with cli_node(spin_time=args.spin_time) as node:
+    with cli_node(context, spin_time=args.spin_time) as node:
         response = call(node, GetParameters, f'{target}/get_parameters',
-                         GetParameters.Request(names=[args.parameter_name]))
+                         GetParameters.Request(names=[args.parameter_name]), context=context)
     if not response.values:
         return 'Parameter not set'
     value = response.values[0]
     if value.type == 0:
-        print('Parameter not set.' if not args.hide_type else None)
+        print('Parameter not set.' if not args.hide_type else None, file=context.stdout)
         return 0
     if value.type not in LABELS:
         return f"Unknown parameter type '{value.type}'"
@@ -52,5 +54,5 @@ def main(args: argparse.Namespace) -> int | str:
     if value.type >= 5:
         data = list(data) if value.type != 5 else [bytes([b]) if isinstance(b, int) else b
                                                    for b in data]
-    print(data if args.hide_type else f'{label} {data}')
+    print(data if args.hide_type else f'{label} {data}', file=context.stdout)
     return 0

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import re
 
+from ros2cli.verb_context import VerbContext
+
 from ros2param.api import TYPE_NAMES, call, find_node
 
 HELP = 'Output a list of available parameters'
@@ -35,46 +37,57 @@ def runs_in_daemon(_args: argparse.Namespace) -> bool:
     return True
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from ros2cli.graph import graph_source
     if args.node_name:
-        target = find_node(args)
+        target = find_node(args, context=context)
         if target is None:
             return 'Node not found'
         targets = [target]
         # The node may be listed before its parameter services have been discovered.
-        with graph_source(not args.no_daemon, args.spin_time) as source:
+        with graph_source(not args.no_daemon, args.spin_time, context) as source:
             source.graph(ready=lambda g: f'{target}/list_parameters' in dict(g.services(True)))
     else:
-        with graph_source(not args.no_daemon, args.spin_time) as source:
+        with graph_source(not args.no_daemon, args.spin_time, context) as source:
             graph = source.graph()
         services = dict(graph.services(True))
         targets = [name for name in graph.node_names(args.include_hidden_nodes)
                    if f'{name}/list_parameters' in services]
     if targets:
-        _list_parameters(args, sorted(set(targets)))
+        _list_parameters(args, sorted(set(targets)), context)
     return 0
 
 
-def _list_parameters(args: argparse.Namespace, targets: list[str]) -> None:
+def _list_parameters(args: argparse.Namespace, targets: list[str], context: VerbContext) -> None:
     """Ask each node for its parameters directly (the daemon never calls a node)."""
     from rcl_interfaces.srv import DescribeParameters, ListParameters
     from ros2cli.node.direct import cli_node
-    with cli_node(spin_time=args.spin_time) as node:
+    with cli_node(context, spin_time=args.spin_time) as node:
         for target in targets:
             request = ListParameters.Request()
             request.prefixes = list(args.param_prefixes)
-            response = call(node, ListParameters, f'{target}/list_parameters', request)
+            response = call(
+                node, ListParameters, f'{target}/list_parameters', request, context=context
+            )
             names = sorted(response.result.names)
             if args.filter is not None:  # matched at the start of the name, as upstream
                 names = [name for name in names if args.filter[0].match(name)]
             if not args.node_name and names:
-                print(f'{target}:')
+                print(f'{target}:', file=context.stdout)
             types = {}
             if args.param_type:
-                described = call(node, DescribeParameters, f'{target}/describe_parameters',
-                                  DescribeParameters.Request(names=names))
-                types = {d.name: TYPE_NAMES.get(d.type, 'unknown type')
-                         for d in described.descriptors}
+                described = call(
+                    node,
+                    DescribeParameters,
+                    f'{target}/describe_parameters',
+                    DescribeParameters.Request(names=names),
+                    context=context,
+                )
+                types = {
+                    d.name: TYPE_NAMES.get(d.type, 'unknown type') for d in described.descriptors
+                }
             for name in names:
-                print(f'  {name} (type: {types[name]})' if args.param_type else f'  {name}')
+                print(
+                    f'  {name} (type: {types[name]})' if args.param_type else f'  {name}',
+                    file=context.stdout,
+                )

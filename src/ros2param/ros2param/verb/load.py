@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import os
 
+from ros2cli.verb_context import VerbContext
+
 from ros2param.api import add_timeout, call, find_node, print_result
 
 HELP = 'Load parameter file for a node'
@@ -23,7 +25,7 @@ def _read_parameter_file(path: str, use_wildcard: bool) -> list:
     import yaml
     from rclpy.parameter import parameter_dict_from_yaml_file
     from ros2cli.message_yaml import yaml_problem
-    from ros2cli.verb import CliError
+    from ros2cli.verb_context import CliError
     if not os.path.isfile(path):
         # The OS's words, as upstream's (its open() error): 'No such file or directory'.
         raise CliError(f"Parameter file '{path}': No such file or directory")
@@ -38,18 +40,18 @@ def _read_parameter_file(path: str, use_wildcard: bool) -> list:
                        f'{error}') from None
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from rcl_interfaces.srv import SetParameters
     from ros2cli.node.direct import cli_node
     # The node first, then the file, as upstream: an unknown node is 'Node not found'.
-    target = find_node(args)
+    target = find_node(args, context=context)
     if target is None:
         return 'Node not found'
     parameters = _read_parameter_file(args.parameter_file, not args.no_use_wildcard)
-    with cli_node(spin_time=args.spin_time) as node:
+    with cli_node(context, spin_time=args.spin_time) as node:
         response = call(node, SetParameters, f'{target}/set_parameters',
-                         SetParameters.Request(parameters=parameters))
+                         SetParameters.Request(parameters=parameters), context=context)
     for parameter, result in zip(parameters, response.results, strict=False):
         print_result(result, f'Set parameter {parameter.name} successful',
-                      f'Set parameter {parameter.name} failed')
+                      f'Set parameter {parameter.name} failed', context=context)
     return 0

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2param.api import add_timeout, call, find_node, print_result
 
 HELP = 'Set parameter'
@@ -52,7 +54,7 @@ def runs_in_daemon(_args: argparse.Namespace) -> bool:
     return True
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from rcl_interfaces.msg import Parameter
     from rcl_interfaces.srv import SetParameters
     from ros2cli.node.direct import cli_node
@@ -61,12 +63,14 @@ def main(args: argparse.Namespace) -> int | str:
     low, high = INTEGER_RANGES['int64']
     if value.type == 2 and not low <= value.integer_value <= high:
         return f'Value {args.value} does not fit a 64-bit integer parameter [{low}, {high}]'
-    target = find_node(args)
+    target = find_node(args, context=context)
     if target is None:
         return 'Node not found'
-    with cli_node(spin_time=args.spin_time) as node:
+    with cli_node(context, spin_time=args.spin_time) as node:
         request = SetParameters.Request(
             parameters=[Parameter(name=args.parameter_name, value=value)])
-        response = call(node, SetParameters, f'{target}/set_parameters', request)
-    print_result(response.results[0], 'Set parameter successful', 'Setting parameter failed')
+        response = call(node, SetParameters, f'{target}/set_parameters', request, context=context)
+    print_result(
+        response.results[0], 'Set parameter successful', 'Setting parameter failed', context=context
+    )
     return 0

@@ -38,7 +38,7 @@ def get_prefix_path(package_name: str) -> str | None:
 def get_executable_paths(*, package_name: str) -> list[str]:
     """Every executable file under <prefix>/lib/<package>/ (as `ros2 run` finds them);
     PackageNotFound for an unknown package."""
-    from ros2cli.verb import CliError
+    from ros2cli.verb_context import CliError
     try:
         return executables(package_name)[1]
     except CliError:
@@ -50,7 +50,7 @@ def executables(package: str) -> tuple[str, list[str]]:
     import os
 
     from ament_index_python.packages import PackageNotFoundError, get_package_prefix
-    from ros2cli.verb import CliError
+    from ros2cli.verb_context import CliError
     try:
         prefix = get_package_prefix(package)
     except (PackageNotFoundError, ValueError):
@@ -70,7 +70,7 @@ def share_directory(name: str) -> str:
     try:
         return get_package_share_directory(name)
     except (PackageNotFoundError, ValueError):
-        from ros2cli.verb import CliError
+        from ros2cli.verb_context import CliError
         raise CliError(PACKAGE_NOT_FOUND) from None
 
 

@@ -12,8 +12,9 @@ import re
 import shutil
 import subprocess
 from dataclasses import dataclass, field
+from typing import TextIO
 
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError
 
 BUILD_TYPES = ('cmake', 'ament_cmake', 'ament_python')
 DEFAULT_DESCRIPTION = 'TODO: Package description'
@@ -116,27 +117,28 @@ def validate(spec: PackageSpec) -> None:
         raise CliError(f'Invalid package: {detail}') from None
 
 
-def print_summary(spec: PackageSpec) -> None:
-    print('going to create a new package')
-    print('package name:', spec.name)
-    print('destination directory:', os.path.abspath(spec.destination))
-    print('package format:', spec.package_format)
-    print('version:', '0.0.0')
-    print('description:', spec.description)
-    print('maintainer:', [spec.maintainer])
-    print('licenses:', [spec.license])
-    print('build type:', spec.build_type)
-    print('dependencies:', list(spec.dependencies))
+def print_summary(spec: PackageSpec, out: TextIO) -> None:
+    print('going to create a new package', file=out)
+    print('package name:', spec.name, file=out)
+    print('destination directory:', os.path.abspath(spec.destination), file=out)
+    print('package format:', spec.package_format, file=out)
+    print('version:', '0.0.0', file=out)
+    print('description:', spec.description, file=out)
+    print('maintainer:', [spec.maintainer], file=out)
+    print('licenses:', [spec.license], file=out)
+    print('build type:', spec.build_type, file=out)
+    print('dependencies:', list(spec.dependencies), file=out)
     if spec.node_name:
-        print('node_name:', spec.node_name)
+        print('node_name:', spec.node_name, file=out)
     if spec.library_name:
-        print('library_name:', spec.library_name)
+        print('library_name:', spec.library_name, file=out)
 
 
 class _Writer:
     """Creates folders and files, printing each as ros2pkg does."""
 
-    def __init__(self, spec: PackageSpec) -> None:
+    def __init__(self, spec: PackageSpec, out: TextIO) -> None:
+        self.out = out
         self.values = {
             'package_name': spec.name, 'package_format': str(spec.package_format),
             'description': spec.description, 'license': spec.license,
@@ -147,7 +149,7 @@ class _Writer:
 
     def folder(self, base: str, name: str) -> str:
         path = os.path.join(base, name)
-        print('creating folder', path)
+        print('creating folder', path, file=self.out)
         os.makedirs(path, exist_ok=True)
         return path
 
@@ -160,7 +162,7 @@ class _Writer:
 
     def text(self, text: str, directory: str, name: str) -> str:
         path = os.path.join(directory, name)
-        print('creating', path)
+        print('creating', path, file=self.out)
         with open(path, 'w', encoding='utf-8') as target:
             target.write(text)
         return path
@@ -274,19 +276,19 @@ def _cmake_node(spec: PackageSpec) -> str:
         '  COMPONENT dev)\n')
 
 
-def create(spec: PackageSpec, license_files: list[str] | None) -> None:
+def create(spec: PackageSpec, license_files: list[str] | None, out: TextIO) -> None:
     """Write the package (the caller has validated `spec` and printed the summary)."""
-    write = _Writer(spec)
+    write = _Writer(spec, out)
     package_dir = write.folder(spec.destination, spec.name)
     write.file('common/package.xml.in', package_dir, 'package.xml',
                depend_blocks=_depend_blocks(spec))
     source_dir = None
     if spec.build_type in ('cmake', 'ament_cmake'):
-        print('creating source and include folder')
+        print('creating source and include folder', file=out)
         source_dir = write.folder(package_dir, 'src')
         write.folder(os.path.join(package_dir, 'include'), spec.name)
     else:
-        print('creating source folder')
+        print('creating source folder', file=out)
         source_dir = write.folder(package_dir, spec.name)
 
     if spec.build_type == 'ament_python':

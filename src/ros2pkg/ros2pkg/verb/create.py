@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import argparse
 import os
-import sys
 
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError, VerbContext
 
 HELP = 'Create a new ROS 2 package'
 
@@ -37,14 +36,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--library-name', help='name of the empty library')
 
 
-def main(args: argparse.Namespace) -> int:
+def main(args: argparse.Namespace, context: VerbContext) -> int:
     from ament_copyright import get_licenses
 
     from ros2pkg.api.create import PackageSpec, create, default_email, print_summary, validate
 
     licenses = {entry.spdx: entry.license_files for entry in get_licenses().values()}
     if args.license == '?':
-        print('Supported licenses:\n' + '\n'.join(licenses))
+        print('Supported licenses:\n' + '\n'.join(licenses), file=context.stdout)
         return 0
     spec = PackageSpec(
         name=args.package_name, build_type=args.build_type,
@@ -57,8 +56,8 @@ def main(args: argparse.Namespace) -> int:
     spec.maintainer_email = args.maintainer_email or default_email(spec.maintainer_name)
     if spec.node_name and spec.node_name == spec.library_name:
         spec.node_name += '_node'
-        print('[WARNING] node name can not be equal to the library name', file=sys.stderr)
-        print(f'[WARNING] renaming node to {spec.node_name}', file=sys.stderr)
+        print('[WARNING] node name can not be equal to the library name', file=context.stderr)
+        print(f'[WARNING] renaming node to {spec.node_name}', file=context.stderr)
     validate(spec)
     package_path = os.path.join(spec.destination, spec.name)
     if os.path.exists(package_path):
@@ -67,14 +66,14 @@ def main(args: argparse.Namespace) -> int:
     if os.path.exists(spec.destination) and not os.path.isdir(spec.destination):
         raise CliError(f"Invalid --destination-directory '{spec.destination}': "
                        'it is a file, not a directory')
-    print_summary(spec)
+    print_summary(spec, context.stdout)
     try:
-        create(spec, licenses.get(spec.license))
+        create(spec, licenses.get(spec.license), context.stdout)
     except OSError as error:
         raise CliError(f'unable to create the package in {spec.destination}: '
                        f'{error.strerror}') from None
     if spec.license not in licenses:
         print(f"\n[WARNING]: Unknown license '{spec.license}'.  This has been set in the "
               'package.xml, but no LICENSE file has been created.\nIt is recommended to use '
-              'one of the ament license identifiers:\n' + '\n'.join(licenses))
+              'one of the ament license identifiers:\n' + '\n'.join(licenses), file=context.stdout)
     return 0

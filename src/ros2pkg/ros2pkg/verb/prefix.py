@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError, VerbContext
 
 from ros2pkg.api import PACKAGE_NOT_FOUND, get_prefix_path, share_directory
 
@@ -17,12 +17,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='Show share directory for the package')
 
 
-def main(args: argparse.Namespace) -> int:
+def main(args: argparse.Namespace, context: VerbContext) -> int:
     if args.share:
-        print(share_directory(args.package_name))
+        print(share_directory(args.package_name), file=context.stdout)
         return 0
     prefix = get_prefix_path(args.package_name)
     if prefix is None:
         raise CliError(PACKAGE_NOT_FOUND)
-    print(prefix)
+    print(prefix, file=context.stdout)
     return 0

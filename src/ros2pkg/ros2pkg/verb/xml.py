@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError, VerbContext
 
 from ros2pkg.api import share_directory
 
@@ -19,7 +19,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('-t', '--tag', help="The XML tag to output (e.g. 'version')")
 
 
-def main(args: argparse.Namespace) -> int:
+def main(args: argparse.Namespace, context: VerbContext) -> int:
     import xml.etree.ElementTree as ET
 
     manifest = os.path.join(share_directory(args.package_name), 'package.xml')
@@ -39,5 +39,5 @@ def main(args: argparse.Namespace) -> int:
     if not elements:
         raise CliError(PACKAGE_XML_TAG_NOT_FOUND)
     for element in elements:
-        print(element.text)
+        print(element.text, file=context.stdout)
     return 0

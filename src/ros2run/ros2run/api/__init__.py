@@ -8,11 +8,12 @@ import shlex
 import signal
 import subprocess
 
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError, VerbContext
 from ros2pkg.api import executables
 
 
-def run_executable(package: str, executable: str, argv: list[str], prefix: str | None) -> int | str:
+def run_executable(package: str, executable: str, argv: list[str], prefix: str | None,
+                   context: VerbContext) -> int | str:
     lib, available = executables(package)
     paths = [p for p in available if os.path.basename(p) == executable]
     if not paths:
@@ -41,7 +42,7 @@ def run_executable(package: str, executable: str, argv: list[str], prefix: str |
     code = process.returncode
     if code != 0:
         if code < 0 and -code in signal.valid_signals():
-            print(f'[ros2run]: {signal.strsignal(-code)}')
+            print(f'[ros2run]: {signal.strsignal(-code)}', file=context.stdout)
         else:
-            print(f'[ros2run]: Process exited with failure {code}')
+            print(f'[ros2run]: Process exited with failure {code}', file=context.stdout)
     return code

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import time
 
-from ros2cli.verb import CliError
+from ros2cli.verb_context import CliError, VerbContext
 
 HELP = 'Call a service'
 
@@ -33,7 +33,7 @@ def runs_in_daemon(args: argparse.Namespace) -> bool:
     return args.rate is None and not args.stdin
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     import sys
 
     from ros2cli.interface_types import import_type
@@ -53,20 +53,20 @@ def main(args: argparse.Namespace) -> int | str:
     request = populate(srv_type.Request(), values)
 
     started = time.monotonic()
-    with cli_node(spin_time=args.spin_time) as node:
+    with cli_node(context, spin_time=args.spin_time) as node:
         client = node.create_client(srv_type, args.service_name)
-        if not _wait_for_service(client, started, args.timeout):
+        if not _wait_for_service(client, started, args.timeout, context):
             return (f"Service '{args.service_name}' did not become available within "
                     f'{args.timeout:g} s (is its node running? see `ros2 service list`)')
         while True:
-            print(f'requester: making request: {request!r}\n', flush=True)
+            print(f'requester: making request: {request!r}\n', flush=True, file=context.stdout)
             last_call = time.monotonic()
             future = client.call_async(request)
             while not future.done():
-                spin_once(node, 0.1)
+                spin_once(node, 0.1, context)
             if future.exception() is not None:
                 raise CliError(f'Exception while calling service: {future.exception()!r}')
-            print(f'response:\n{future.result()!r}\n', flush=True)
+            print(f'response:\n{future.result()!r}\n', flush=True, file=context.stdout)
             if period is None:
                 break
             remaining = last_call + period - time.monotonic()
@@ -75,16 +75,15 @@ def main(args: argparse.Namespace) -> int | str:
     return 0
 
 
-def _wait_for_service(client, started: float, timeout: float) -> bool:
+def _wait_for_service(client, started: float, timeout: float, context: VerbContext) -> bool:
     """Quietly give discovery three seconds, then say that we wait (as ros2cli does), bounded."""
-    from ros2cli.node.direct import stop_if_cli_left
     forever = timeout <= 0
     grace = started + (3.0 if forever else min(3.0, timeout))
     if client.wait_for_service(timeout_sec=max(0.0, grace - time.monotonic())):
         return True
-    print('waiting for service to become available...', flush=True)
+    print('waiting for service to become available...', flush=True, file=context.stdout)
     if forever:
         while not client.wait_for_service(timeout_sec=1.0):
-            stop_if_cli_left()
+            context.check_cancelled()
         return True
     return client.wait_for_service(timeout_sec=max(0.0, started + timeout - time.monotonic()))

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ros2cli.names import print_names
+from ros2cli.verb_context import VerbContext
 
 from ros2service.api import includes_hidden, query_graph
 
@@ -18,7 +19,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='Only display the number of services discovered')
 
 
-def main(args: argparse.Namespace) -> int:
-    print_names([name for name, types in query_graph(args).services(includes_hidden(args))
-                 if args.service_type in types], args.count_services)
+def main(args: argparse.Namespace, context: VerbContext) -> int:
+    print_names(
+        [
+            name
+            for name, types in query_graph(args, context=context).services(includes_hidden(args))
+            if args.service_type in types
+        ],
+        args.count_services,
+        context=context,
+    )
     return 0

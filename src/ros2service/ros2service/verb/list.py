@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2service.api import includes_hidden, query_graph
 
 HELP = 'Output a list of available services'
@@ -16,11 +18,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='Only display the number of services discovered')
 
 
-def main(args: argparse.Namespace) -> int:
-    found = query_graph(args).services(includes_hidden(args))
+def main(args: argparse.Namespace, context: VerbContext) -> int:
+    found = query_graph(args, context=context).services(includes_hidden(args))
     if args.count_services:
-        print(len(found))
+        print(len(found), file=context.stdout)
         return 0
     for name, types in found:
-        print(f'{name} [{", ".join(types)}]' if args.show_types else name)
+        print(f'{name} [{", ".join(types)}]' if args.show_types else name, file=context.stdout)
     return 0

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2service.api import lookup
 
 HELP = "Output a service's type"
@@ -13,10 +15,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('service_name', help="Name of the ROS service to get type (e.g. '/talker')")
 
 
-def main(args: argparse.Namespace) -> int:
-    found, _ = lookup(args)
+def main(args: argparse.Namespace, context: VerbContext) -> int:
+    found, _ = lookup(args, context=context)
     if found is None:
         return 1
     for service_type in found:
-        print(service_type)
+        print(service_type, file=context.stdout)
     return 0

@@ -31,6 +31,8 @@ from collections import deque
 from collections.abc import Callable
 from typing import Any
 
+from ros2cli.verb_context import VerbContext
+
 from ros2topic.api.qos import (
     compatible_profile,
     policies_given,
@@ -48,9 +50,11 @@ class AdaptiveSubscription:
     publisher asks for it; call poll() between spins."""
 
     def __init__(self, node: Any, msg_type: Any, topic: str,
-                 callback: Callable[[Any, Any], None], args: argparse.Namespace, *,
-                 raw: bool = False, message_lost: Callable[[Any], None] | None = None) -> None:
+                 callback: Callable[[Any, Any], None], args: argparse.Namespace,
+                 context: VerbContext, *, raw: bool = False,
+                 message_lost: Callable[[Any], None] | None = None) -> None:
         self.node = node
+        self.context = context
         self.msg_type = msg_type
         self.topic = topic
         self.callback = callback
@@ -76,12 +80,13 @@ class AdaptiveSubscription:
     def _say(self, text: str) -> None:
         if text not in self._said:
             self._said.add(text)
-            print(text, flush=True)
+            print(text, flush=True, file=self.context.stdout)
 
     def _create(self, profile: Any) -> Any:
         from rclpy.event_handler import UnsupportedEventTypeError
 
-        events = subscription_events(self.node, self.topic, superseded=self._would_change)
+        events = subscription_events(self.node, self.topic, self.context,
+                                     superseded=self._would_change)
         replacing = hasattr(self, 'subscription')
         first: list[float] = [] if replacing else [-CATCH_UP]  # monotonic time of 1st message
         if self.message_lost is not None:

@@ -2,18 +2,20 @@
 make, the profile compatible with a topic's publishers (which `topic echo` follows, see
 adaptive_subscription.py), and ros2cli's incompatible-QoS warnings.
 
-The warnings are rclpy's default event callbacks' lines. A verb run by the daemon logs to the
-daemon's terminal, so there the same line goes to the verb's stderr, which reaches the CLI.
+The warnings are rclpy's default event callbacks' lines. A verb run by the daemon would log to
+the daemon's terminal, so there the same line goes to the verb's stderr (its context's),
+which reaches the CLI.
 """
 
 from __future__ import annotations
 
 import argparse
 import copy
-import sys
 import time
 from collections.abc import Callable
 from typing import Any
+
+from ros2cli.verb_context import VerbContext
 
 # rclpy 7.1's short keys (QoSPresetProfiles.short_keys(), ...), written out: the CLI builds
 # its parser without importing rclpy (a verb the daemon runs never loads it); the test
@@ -141,17 +143,16 @@ def compatible_profile(profile: Any, infos: list[Any], say: Callable[[str], None
     return profile
 
 
-def _warn(node: Any, text: str) -> None:
-    from ros2cli.daemon.verb_host import session
-
+def _warn(node: Any, text: str, context: VerbContext) -> None:
     logger = node.get_logger()
-    if session() is None:
+    if not context.in_daemon:
         logger.warn(text)
-    else:
-        print(f'[WARN] [{time.time():.9f}] [{logger.name}]: {text}', file=sys.stderr, flush=True)
+    else:  # rclpy would log to the daemon's terminal: the same line goes to the CLI's stderr
+        print(f'[WARN] [{time.time():.9f}] [{logger.name}]: {text}', file=context.stderr,
+              flush=True)
 
 
-def subscription_events(node: Any, topic: str,
+def subscription_events(node: Any, topic: str, context: VerbContext,
                         superseded: Callable[[], bool] | None = None) -> Any:
     """rclpy's default incompatible-QoS warning of a subscription, seen by the CLI; not given
     when `superseded()` says the subscription is about to be replaced."""
@@ -163,12 +164,12 @@ def subscription_events(node: Any, topic: str,
             return
         _warn(node, f"New publisher discovered on topic '{topic}', offering incompatible QoS. "
               'No messages will be received from it. Last incompatible policy: '
-              f'{qos_policy_name_from_kind(event.last_policy_kind)}')
+              f'{qos_policy_name_from_kind(event.last_policy_kind)}', context)
 
     return SubscriptionEventCallbacks(incompatible_qos=incompatible)
 
 
-def publisher_events(node: Any, topic: str) -> Any:
+def publisher_events(node: Any, topic: str, context: VerbContext) -> Any:
     """rclpy's default incompatible-QoS warning of a publisher, seen by the CLI."""
     from rclpy.event_handler import PublisherEventCallbacks
     from rclpy.qos import qos_policy_name_from_kind
@@ -176,6 +177,6 @@ def publisher_events(node: Any, topic: str) -> Any:
     def incompatible(event: Any) -> None:
         _warn(node, f"New subscription discovered on topic '{topic}', requesting incompatible "
               'QoS. No messages will be sent to it. Last incompatible policy: '
-              f'{qos_policy_name_from_kind(event.last_policy_kind)}')
+              f'{qos_policy_name_from_kind(event.last_policy_kind)}', context)
 
     return PublisherEventCallbacks(incompatible_qos=incompatible)

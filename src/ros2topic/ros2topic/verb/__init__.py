@@ -8,6 +8,8 @@ import argparse
 import sys
 from typing import Any
 
+from ros2cli.verb_context import VerbContext
+
 
 class VerbExtension:
     """A `ros2 topic` verb: add_arguments(parser, cli_name) and main(*, args)."""
@@ -16,7 +18,7 @@ class VerbExtension:
         return sys.modules[type(self).__module__]
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:
-        # The options every graph verb of the `ros2` command has (ros2cli.verb.add_graph_verb).
+        # The options every graph verb of the `ros2` command has (ros2cli.command.add_graph_verb).
         parser.add_argument('--spin-time', type=float, default=None)
         parser.add_argument('-s', '--use-sim-time', action='store_true')
         parser.add_argument('--no-daemon', action='store_true')
@@ -30,4 +32,4 @@ class VerbExtension:
         values = {action.dest: action.default for action in parser._actions}
         values['include_hidden_topics_verb'] = False
         values.update(vars(args))
-        return self._module().main(argparse.Namespace(**values))
+        return self._module().main(argparse.Namespace(**values), VerbContext.here())

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import argparse
-import sys
+
+from ros2cli.verb_context import VerbContext
 
 from ros2topic.api import positive_int, report_every_second, wait_for_type
 from ros2topic.verb import VerbExtension
@@ -24,16 +25,16 @@ def _size_text(count: float, scale: float) -> str:
     return f'{count / scale:.2f} {"KB" if scale == 1e3 else "MB"}'
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from collections import deque
 
     from rclpy.qos import qos_profile_sensor_data
     from ros2cli.node.direct import cli_node
 
     from ros2topic.api import apply_sim_time
-    with cli_node(spin_time=args.spin_time) as node:
+    with cli_node(context, spin_time=args.spin_time) as node:
         apply_sim_time(node, args)
-        msg_type = wait_for_type(node, args.topic_name, args.spin_time)
+        msg_type = wait_for_type(node, args.topic_name, args.spin_time, context=context)
         clock = node.get_clock()
         window: deque[tuple[int, int]] = deque(maxlen=args.window)  # (ns received, bytes)
 
@@ -42,14 +43,14 @@ def main(args: argparse.Namespace) -> int | str:
 
         node.create_subscription(msg_type, args.topic_name, on_message,
                                  qos_profile_sensor_data, raw=True)
-        print(f'Subscribed to [{args.topic_name}]', flush=True)
+        print(f'Subscribed to [{args.topic_name}]', flush=True, file=context.stdout)
 
         def report() -> None:
             if len(window) < 2:
                 return
             elapsed = (clock.now().nanoseconds - window[0][0]) * 1e-9
             if elapsed <= 0:
-                print('WARNING: time is reset!', file=sys.stderr)
+                print('WARNING: time is reset!', file=context.stderr)
                 window.clear()
                 return
             sizes = [size for _, size in window]
@@ -57,10 +58,14 @@ def main(args: argparse.Namespace) -> int | str:
             scale = 1 if rate < 1e3 else 1e3 if rate < 1e6 else 1e6
             mean, low, high = (_size_text(v, scale) for v in
                                (sum(sizes) / len(sizes), min(sizes), max(sizes)))
-            print(f'{_size_text(rate, scale)}/s from {len(sizes)} messages\n'
-                  f'\tMessage size mean: {mean} min: {low} max: {high}', flush=True)
+            print(
+                f'{_size_text(rate, scale)}/s from {len(sizes)} messages\n'
+                f'\tMessage size mean: {mean} min: {low} max: {high}',
+                flush=True,
+                file=context.stdout,
+            )
 
-        report_every_second(node, report)
+        report_every_second(node, report, context=context)
 
 
 class BwVerb(VerbExtension):

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import math
 
+from ros2cli.verb_context import VerbContext
+
 from ros2topic.api import positive_int, report_every_second, wait_for_type
 from ros2topic.verb import VerbExtension
 
@@ -17,7 +19,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='window size, in # of messages, for calculating rate (default: 10000)')
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from collections import deque
 
     from rclpy.qos import qos_profile_sensor_data
@@ -26,9 +28,9 @@ def main(args: argparse.Namespace) -> int | str:
     from ros2cli.node.direct import cli_node
 
     from ros2topic.api import apply_sim_time
-    with cli_node(spin_time=args.spin_time) as node:
+    with cli_node(context, spin_time=args.spin_time) as node:
         apply_sim_time(node, args)
-        msg_type = wait_for_type(node, args.topic_name, args.spin_time)
+        msg_type = wait_for_type(node, args.topic_name, args.spin_time, context=context)
         if 'header' not in msg_type.get_fields_and_field_types():
             return (f'{type_name(msg_type)} has no header: the delay is measured from '
                     'header.stamp (use a stamped type, e.g. geometry_msgs/msg/TwistStamped)')
@@ -50,7 +52,7 @@ def main(args: argparse.Namespace) -> int | str:
             if not delays:
                 return
             if received['count'] == received['printed']:
-                print('no new messages', flush=True)
+                print('no new messages', flush=True, file=context.stdout)
                 return
             received['printed'] = received['count']
             n = len(delays)
@@ -58,9 +60,9 @@ def main(args: argparse.Namespace) -> int | str:
             std = math.sqrt(sum((d - mean) ** 2 for d in delays) / n)
             print(f'average delay: {mean * 1e-9:.3f}\n\tmin: {min(delays) * 1e-9:.3f}s '
                   f'max: {max(delays) * 1e-9:.3f}s std dev: {std * 1e-9:.5f}s window: {n}',
-                  flush=True)
+                  flush=True, file=context.stdout)
 
-        report_every_second(node, report)
+        report_every_second(node, report, context=context)
 
 
 class DelayVerb(VerbExtension):

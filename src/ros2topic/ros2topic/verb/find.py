@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ros2cli.names import print_names
+from ros2cli.verb_context import VerbContext
 
 from ros2topic.api import includes_hidden, query_graph
 from ros2topic.verb import VerbExtension
@@ -19,9 +20,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='Only display the number of topics discovered')
 
 
-def main(args: argparse.Namespace) -> int:
-    print_names([name for name, types in query_graph(args).topics(includes_hidden(args))
-                 if args.topic_type in types], args.count_topics)
+def main(args: argparse.Namespace, context: VerbContext) -> int:
+    print_names(
+        [
+            name
+            for name, types in query_graph(args, context=context).topics(includes_hidden(args))
+            if args.topic_type in types
+        ],
+        args.count_topics,
+        context=context,
+    )
     return 0
 
 

@@ -7,6 +7,8 @@ import itertools
 import math
 import time
 
+from ros2cli.verb_context import VerbContext
+
 from ros2topic.api import message_filter, positive_int, wait_for_type
 from ros2topic.verb import VerbExtension
 
@@ -24,15 +26,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         'is not published during simulation')
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from rclpy.qos import qos_profile_sensor_data
     from ros2cli.node.direct import cli_node, spin_once
 
     from ros2topic.api import apply_sim_time
     keep = message_filter(args.filter_expr)
-    with cli_node(spin_time=args.spin_time) as node:
+    with cli_node(context, spin_time=args.spin_time) as node:
         apply_sim_time(node, args)
-        msg_type = wait_for_type(node, args.topic_name, args.spin_time)
+        msg_type = wait_for_type(node, args.topic_name, args.spin_time, context=context)
         clock = node.get_clock()
         # Arrival times in ns: the node's clock (sim time with -s), or the wall clock.
         stamps: list[int] = []
@@ -43,7 +45,7 @@ def main(args: argparse.Namespace) -> int | str:
                 return
             now = time.time_ns() if args.use_wtime else clock.now().nanoseconds
             if stamps and now < stamps[-1]:
-                print('time has reset, resetting counters', flush=True)
+                print('time has reset, resetting counters', flush=True, file=context.stdout)
                 stamps.clear()
             stamps.append(now)
             received[0] += 1
@@ -54,7 +56,7 @@ def main(args: argparse.Namespace) -> int | str:
         last_print = time.monotonic()
         printed_count = 0
         while True:
-            spin_once(node, 0.05)
+            spin_once(node, 0.05, context)
             now = time.monotonic()
             if now - last_print < 1.0:
                 continue
@@ -68,8 +70,12 @@ def main(args: argparse.Namespace) -> int | str:
             if mean <= 0:
                 continue
             std = math.sqrt(sum((d - mean) ** 2 for d in deltas) / n)
-            print(f'average rate: {1.0 / mean:.3f}\n\tmin: {min(deltas):.3f}s max: '
-                  f'{max(deltas):.3f}s std dev: {std:.5f}s window: {n + 1}', flush=True)
+            print(
+                f'average rate: {1.0 / mean:.3f}\n\tmin: {min(deltas):.3f}s max: '
+                f'{max(deltas):.3f}s std dev: {std:.5f}s window: {n + 1}',
+                flush=True,
+                file=context.stdout,
+            )
 
 
 class HzVerb(VerbExtension):

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ros2cli.verb_context import VerbContext
+
 from ros2topic.api import includes_hidden, query_graph
 from ros2topic.verb import VerbExtension
 
@@ -23,23 +25,23 @@ def _plural(count: int, word: str) -> str:
     return f'{count} {word}{"s" if count > 1 else ""}'
 
 
-def main(args: argparse.Namespace) -> int:
-    graph = query_graph(args)
+def main(args: argparse.Namespace, context: VerbContext) -> int:
+    graph = query_graph(args, context=context)
     found = graph.topics(includes_hidden(args))
     if args.count_topics:
-        print(len(found))
+        print(len(found), file=context.stdout)
     elif args.verbose:
         for title, index, word in (('Published topics:', 0, 'publisher'),
                                    ('Subscribed topics:', 1, 'subscriber')):
-            print(title)
+            print(title, file=context.stdout)
             for name, types in found:
                 n = graph.topic_counts(name)[index]
                 if n:
-                    print(f' * {name} [{", ".join(types)}] {_plural(n, word)}')
-            print()
+                    print(f' * {name} [{", ".join(types)}] {_plural(n, word)}', file=context.stdout)
+            print(file=context.stdout)
     else:
         for name, types in found:
-            print(f'{name} [{", ".join(types)}]' if args.show_types else name)
+            print(f'{name} [{", ".join(types)}]' if args.show_types else name, file=context.stdout)
     return 0
 
 

@@ -7,6 +7,7 @@ import sys
 import time
 
 from ros2cli.echo_options import unsigned_int
+from ros2cli.verb_context import VerbContext
 
 from ros2topic.api import positive_float
 from ros2topic.api.qos import add_qos_arguments
@@ -55,7 +56,7 @@ def runs_in_daemon(args: argparse.Namespace) -> bool:
     return bool(args.once or args.times) and not args.stdin
 
 
-def main(args: argparse.Namespace) -> int | str:
+def main(args: argparse.Namespace, context: VerbContext) -> int | str:
     from ros2cli.interface_types import import_type
     from ros2cli.message_yaml import populate
     from ros2cli.node.direct import cli_node
@@ -75,24 +76,32 @@ def main(args: argparse.Namespace) -> int | str:
     if wait_for == 0 and args.max_wait_time_secs is not None:
         return ('--max-wait-time-secs option is only effective with '
                 '--wait-matching-subscriptions, --once or --times')
-    with cli_node(args.node_name, spin_time=args.spin_time) as node:
+    with cli_node(context, args.node_name, spin_time=args.spin_time) as node:
         apply_sim_time(node, args)
         publisher = node.create_publisher(
             msg_type, args.topic_name, qos_profile_from_args(args),
-            event_callbacks=publisher_events(node, args.topic_name))
+            event_callbacks=publisher_events(node, args.topic_name, context))
         # ros2cli's wait: checks every 0.1 s, a note every second, the limit counted in checks.
         start = time.monotonic()
         checks = 0
         while publisher.get_subscription_count() < wait_for:
             if checks % 10 == 0:
-                print(f'Waiting for at least {wait_for} matching subscription(s)...', flush=True)
-            if args.max_wait_time_secs is not None and \
-                    checks * WAIT_STEP >= args.max_wait_time_secs - 1e-9:
-                return (f'Timed out waiting for subscribers: Expected {wait_for} subcribers but '
-                        f'only got {publisher.get_subscription_count()} subscribers')
+                print(
+                    f'Waiting for at least {wait_for} matching subscription(s)...',
+                    flush=True,
+                    file=context.stdout,
+                )
+            if (
+                args.max_wait_time_secs is not None
+                and checks * WAIT_STEP >= args.max_wait_time_secs - 1e-9
+            ):
+                return (
+                    f'Timed out waiting for subscribers: Expected {wait_for} subcribers but '
+                    f'only got {publisher.get_subscription_count()} subscribers'
+                )
             checks += 1
-            _spin_until(node, time.monotonic, start + checks * WAIT_STEP)
-        print('publisher: beginning loop', flush=True)
+            _spin_until(node, time.monotonic, start + checks * WAIT_STEP, context)
+        print('publisher: beginning loop', flush=True, file=context.stdout)
         # The period in the node's clock: with -s, in simulated time.
         clock = node.get_clock()
         period = int(1e9 / args.rate)
@@ -106,20 +115,21 @@ def main(args: argparse.Namespace) -> int | str:
             publisher.publish(msg)
             count += 1
             if args.print and count % args.print == 0:
-                print(f'publishing #{count}: {msg!r}\n', flush=True)
+                print(f'publishing #{count}: {msg!r}\n', flush=True, file=context.stdout)
             if times and count >= times:
                 break
             next_time += period
-            _spin_until(node, lambda: clock.now().nanoseconds, next_time)
-        _spin_until(node, time.monotonic, time.monotonic() + args.keep_alive)
+            _spin_until(node, lambda: clock.now().nanoseconds, next_time, context)
+        _spin_until(node, time.monotonic, time.monotonic() + args.keep_alive, context)
     return 0
 
 
-def _spin_until(node, now, deadline: float) -> None:
+def _spin_until(node, now, deadline: float, context: VerbContext) -> None:
     """Spin `node` until the clock `now()` reads `deadline` (any unit)."""
     from ros2cli.node.direct import spin_once
+
     while now() < deadline:
-        spin_once(node, 0.01)
+        spin_once(node, 0.01, context)
 
 
 class PubVerb(VerbExtension):
