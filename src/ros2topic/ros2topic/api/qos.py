@@ -19,7 +19,7 @@ from ros2cli.verb_context import VerbContext
 
 # rclpy 7.1's short keys (QoSPresetProfiles.short_keys(), ...), written out: the CLI builds
 # its parser without importing rclpy (a verb the daemon runs never loads it); the test
-# tests/test_cli_qos.py checks them against rclpy's.
+# src/ros2topic/test/test_cli_qos.py checks them against rclpy's.
 PROFILES = ['unknown', 'default', 'system_default', 'sensor_data', 'services_default',
             'parameters', 'parameter_events', 'action_status_default', 'best_available']
 HISTORY = ['system_default', 'keep_last', 'keep_all', 'unknown']

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from support import ros2
+from ws_testing import ros2
 
 MAINTAINER = ['--maintainer-name', 'user', '--maintainer-email', 'user@example.com']
 
@@ -165,7 +165,7 @@ def test_create_refuses_an_existing_directory(ros_env, tmp_path):
 
 
 def test_ament_copyright_checks_headers(ros_env, tmp_path):
-    header = (Path(__file__).resolve().parent.parent / 'src/ros2pkg/ros2pkg/templates/'
+    header = (Path(__file__).resolve().parent.parent / 'ros2pkg/templates/'
               'ament_python/test_flake8.py.in').read_text().split('\n\n')[0]
     (tmp_path / 'good.py').write_text(header + '\n\nx = 1\n')
     (tmp_path / 'unknown.py').write_text('# Copyright 2026 Me\n# All rights reserved\nx = 1\n')

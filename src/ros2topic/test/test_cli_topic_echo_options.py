@@ -8,7 +8,7 @@ import time
 
 import pytest
 
-from support import Background, RosProcess, TestNode, interface_type, ros2
+from ws_testing import Background, RosProcess, TestNode, interface_type, ros2
 
 HELLO = 'hello'
 

@@ -8,7 +8,7 @@ import subprocess
 
 import pytest
 
-from support import ros2, wait_until
+from ws_testing import ros2, wait_until
 
 WARNING = re.compile(r'^(/\S+\.py): (\d+): UserWarning: (.*)$')
 

@@ -4,7 +4,7 @@ import time
 
 import pytest
 
-from support import cli_test_node_argv, ros2
+from ws_testing import cli_test_node_argv, ros2
 
 PARAM_SERVICES = [
     ('/cli_test_node/describe_parameters', 'rcl_interfaces/srv/DescribeParameters'),

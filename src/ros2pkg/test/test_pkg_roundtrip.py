@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from support import run_checked as run
+from ws_testing import run_checked as run
 
 CMAKE_INTERFACES = '''\
 find_package(geometry_msgs REQUIRED)
@@ -46,7 +46,7 @@ def sourced(workspace: Path, env: dict[str, str], command: str) -> list[str]:
 @pytest.fixture(scope='module')
 def workspace(tmp_path_factory) -> Path:
     """The two created packages, edited as the tutorials say, built with colcon."""
-    from support import leased_domain, ros_environment
+    from ws_testing import leased_domain, ros_environment
     root = tmp_path_factory.mktemp('ros2_ws')
     src = root / 'src'
     src.mkdir()

@@ -6,7 +6,7 @@ import signal
 
 import pytest
 
-from support import RosProcess, ros2
+from ws_testing import RosProcess, ros2
 
 ACTION = '/turtle1/rotate_absolute'
 TYPE = 'turtlesim/action/RotateAbsolute'

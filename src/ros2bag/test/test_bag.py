@@ -14,7 +14,7 @@ from geometry_msgs.msg import Twist
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from std_msgs.msg import String
 
-from support import Background, interface_type, ros2
+from ws_testing import Background, interface_type, ros2
 
 RECORD_LOG = r'\[INFO\] \[\d+\.\d+\] \[rosbag2_recorder\]: '
 

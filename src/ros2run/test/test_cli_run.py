@@ -2,7 +2,7 @@
 
 import pytest
 
-from support import ros2
+from ws_testing import ros2
 
 
 @pytest.fixture

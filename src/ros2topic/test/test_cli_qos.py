@@ -15,7 +15,7 @@ from rclpy.qos import (
 from ros2topic.api import qos as cli_qos
 from std_msgs.msg import String
 
-from support import Background, ros2, ros2_side_by_side
+from ws_testing import Background, ros2, ros2_side_by_side
 
 WARN = r'\[WARN\] \[\d+\.\d+\] \[_ros2cli_\d+\]: '
 

@@ -2,7 +2,7 @@
 
 import pytest
 
-from support import ros2
+from ws_testing import ros2
 
 SET_PEN = 'uint8 r\nuint8 g\nuint8 b\nuint8 width\nuint8 off\n---\n'
 TWIST_NESTED = '\tfloat64 x\n\tfloat64 y\n\tfloat64 z\n'

@@ -7,7 +7,7 @@ import subprocess
 
 import pytest
 
-from support import TestNode, executable, ros2, ros2_side_by_side
+from ws_testing import TestNode, executable, ros2, ros2_side_by_side
 
 QOS = [f'qos_overrides./parameter_events.publisher.{name}'
        for name in ('depth', 'durability', 'history', 'reliability')]

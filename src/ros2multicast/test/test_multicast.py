@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import re
 
-from support import RosProcess, ros2
+from ws_testing import RosProcess, ros2
 
 
 def test_receive_then_send_as_the_page(ros_env, tmp_path) -> None:
