@@ -22,7 +22,8 @@ from turtlesim.action import RotateAbsolute
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
 
-from fuzz_support import (
+from ws_testing import RosProcess, TestNode, executable, leased_domain, ros_environment, turtle_qos
+from ws_testing.fuzz import (
     CI,
     Target,
     describe,
@@ -32,7 +33,6 @@ from fuzz_support import (
     parameter_values,
     uint8,
 )
-from support import RosProcess, TestNode, executable, leased_domain, ros_environment, turtle_qos
 
 TOKEN = r'[A-Za-z_][A-Za-z0-9_]*'
 # The longest name a turtle creates, /<name>/rotate_absolute/_action/cancel_goal, must fit

@@ -22,7 +22,7 @@ from turtlesim.action import RotateAbsolute
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
 
-from support import (
+from ws_testing import (
     RosProcess,
     TestNode,
     executable,

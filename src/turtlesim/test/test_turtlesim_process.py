@@ -13,7 +13,7 @@ from PySide6.QtGui import QImage
 from rosgraph_msgs.msg import Clock
 from turtlesim.msg import Pose
 
-from support import turtle_qos
+from ws_testing import turtle_qos
 
 CENTER = 5.544444561004639
 

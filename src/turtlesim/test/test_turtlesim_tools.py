@@ -13,7 +13,7 @@ from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
 from turtlesim_py.teleop import INSTRUCTIONS, Command, decode_key
 
-from support import Terminal, executable, turtle_qos
+from ws_testing import Terminal, executable, turtle_qos
 
 
 @pytest.mark.parametrize('key, command', [
