@@ -5,7 +5,7 @@ import re
 import pytest
 from example_interfaces.srv import AddTwoInts
 
-from support import TestNode, wait_until
+from ws_testing import TestNode, wait_until
 
 INT64_MIN, INT64_MAX = -(2**63), 2**63 - 1
 RANGE = f'[{INT64_MIN}, {INT64_MAX}]'

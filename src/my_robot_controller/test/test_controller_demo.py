@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 from test_controller_turtlesim import count_canvas
 
-from support import REPO, executable
+from ws_testing import REPO, executable
 
 STARTED = re.compile(r'^\[INFO\] \[(turtlesim_node|turtle_controller)-\d\]: process started '
                      r'with pid \[(\d+)\]$', re.MULTILINE)

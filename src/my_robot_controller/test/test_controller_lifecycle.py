@@ -18,7 +18,7 @@ from test_controller_turtlesim import (
 )
 from turtlesim.msg import Pose
 
-from support import Background, collect_stamped, wait_until
+from ws_testing import Background, collect_stamped, wait_until
 
 TURTLESIM = ('turtlesim', 'turtlesim_node')
 CONTROLLER = ('my_robot_controller', 'turtle_controller')

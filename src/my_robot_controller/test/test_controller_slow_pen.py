@@ -1,22 +1,29 @@
 """turtle_controller against a stand-in turtle whose set_pen answers 500 ms late.
 
-The stand-in (tests/turtle_stand_in.py) is a real rclpy node: it publishes poses swinging
+The stand-in (turtle_stand_in.py beside this file) is a real rclpy node: it publishes poses swinging
 across x = 5.5 at 62.5 Hz and serves /turtle1/set_pen slowly, logging when each request
 arrived and when it was answered.
 """
 
 import re
+import sys
 import time
 from itertools import pairwise
+from pathlib import Path
 
 from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 
-from support import Background, collect_stamped, stand_in_argv, wait_until
+from ws_testing import Background, collect_stamped, wait_until
 
 REQUEST = re.compile(r'set_pen received r=(\d+) g=(\d+) b=(\d+) width=(\d+) off=(\d+) at=([\d.]+)')
 ANSWER = re.compile(r'set_pen answered at=([\d.]+)')
 RED, GREEN = (255, 0, 0), (0, 255, 0)
+
+
+def stand_in_argv(*args: str) -> list[str]:
+    """Command line of turtle_stand_in.py (a scripted turtle1 with a slow set_pen)."""
+    return [sys.executable, str(Path(__file__).with_name('turtle_stand_in.py')), *args]
 
 
 def _requests(output):

@@ -20,7 +20,7 @@ from service_msgs.msg import ServiceEventInfo
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import SetPen
 
-from support import (
+from ws_testing import (
     Background,
     RosProcess,
     collect_stamped,
@@ -29,7 +29,7 @@ from support import (
     ros_environment,
     wait_until,
 )
-from support import (
+from ws_testing import (
     TestNode as ProbeNode,
 )
 

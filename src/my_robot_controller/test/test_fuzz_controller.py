@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 from rcl_interfaces.msg import Parameter, ParameterType
 from rcl_interfaces.srv import GetParameters, SetParameters
 
-from fuzz_support import CI, Target, describe, names, parameter_values
-from support import RosProcess, TestNode, executable, leased_domain, ros_environment
+from ws_testing import RosProcess, TestNode, executable, leased_domain, ros_environment
+from ws_testing.fuzz import CI, Target, describe, names, parameter_values
 
 # name -> (integer?, low, high), as documented in docs/controller.md
 RANGES = {

@@ -6,7 +6,7 @@ in its own callback group on a multi-threaded executor, so a slow answer never d
 (as in a turtlesim that is busy elsewhere). Each request is logged with wall-clock times:
     set_pen received r=255 g=0 b=0 width=3 off=0 at=<time.time()>
     set_pen answered at=<time.time()>
-Run: python tests/turtle_stand_in.py --path cross --set-pen-delay 0.5
+Run: python src/my_robot_controller/test/turtle_stand_in.py --path cross --set-pen-delay 0.5
 """
 
 from __future__ import annotations

@@ -13,7 +13,7 @@ from rclpy.duration import Duration
 from tf2_py import LookupException, TimeoutException
 from tf2_ros import BufferClient
 
-from support import Background, wait_until
+from ws_testing import Background, wait_until
 
 LATEST = rclpy.time.Time()
 

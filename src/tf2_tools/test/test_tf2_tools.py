@@ -6,7 +6,7 @@ from __future__ import annotations
 import re
 import time
 
-from support import ros2_side_by_side
+from ws_testing import ros2_side_by_side
 
 ECHO_BLOCK = re.compile(
     r'^At time 0\.0\n'

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 from turtlesim.msg import Pose
 
-from support import (
+from ws_testing import (
     RosProcess,
     TestNode,
     leased_domain,

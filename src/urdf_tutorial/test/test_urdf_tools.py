@@ -7,7 +7,7 @@ import time
 
 import pytest
 
-from support import REPO, TestNode
+from ws_testing import REPO, TestNode
 
 DATA = REPO / 'tests' / 'data' / 'urdf'
 

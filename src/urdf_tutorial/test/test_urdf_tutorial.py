@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from support import REPO
+from ws_testing import REPO
 
 URDF = REPO / 'src' / 'urdf_tutorial' / 'urdf'
 

@@ -309,12 +309,6 @@ def collect_stamped(probe: TestNode, msg_type: Any, topic: str,
     return received
 
 
-def stand_in_argv(*args: str) -> list[str]:
-    """Command line of tests/turtle_stand_in.py (a scripted turtle1 with a slow set_pen)."""
-    import sys
-    return [sys.executable, str(REPO / 'tests' / 'turtle_stand_in.py'), *args]
-
-
 # --- ros2 CLI tests (tests/test_cli_*.py) -------------------------------------------------------
 
 def stop_daemon(env: dict[str, str]) -> None:
