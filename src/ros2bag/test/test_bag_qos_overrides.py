@@ -8,7 +8,7 @@ import signal
 from rclpy.qos import DurabilityPolicy, QoSProfile
 from std_msgs.msg import String
 
-from support import ros2
+from ws_testing import ros2
 
 DURABILITY_OVERRIDE = """\
 # durability_override.yaml

@@ -9,7 +9,7 @@ import textwrap
 
 import pytest
 
-from support import ros2
+from ws_testing import ros2
 
 LIST_UNCONFIGURED = ('- configure [1]\n\tStart: unconfigured\n\tGoal: configuring\n'
                      '- shutdown [5]\n\tStart: unconfigured\n\tGoal: shuttingdown\n')

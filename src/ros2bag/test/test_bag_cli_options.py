@@ -17,7 +17,7 @@ from ros2bag.verb.record import add_recorder_arguments, validate_parsed_argument
 from std_msgs.msg import String
 
 import rosbag2_py
-from support import Background, ros2, wait_until
+from ws_testing import Background, ros2, wait_until
 
 
 def test_qos_override_api():

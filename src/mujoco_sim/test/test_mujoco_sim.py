@@ -20,7 +20,7 @@ from std_srvs.srv import Empty
 from tf2_msgs.msg import TFMessage
 
 from mujoco_sim_interfaces.srv import DeleteEntity, SpawnEntity, StepSimulation
-from support import RosProcess, TestNode, executable, leased_domain, ros_environment
+from ws_testing import RosProcess, TestNode, executable, leased_domain, ros_environment
 
 DT = 0.002  # the worlds' timestep
 DELIVERY = 0.3  # s for a /cmd_vel message to reach the paused simulator before it steps

@@ -11,7 +11,7 @@ import pytest
 from geometry_msgs.msg import Twist, TwistStamped
 from turtlesim.msg import Pose
 
-from support import Terminal, executable, turtle_qos
+from ws_testing import Terminal, executable, turtle_qos
 
 TELEOP = executable('teleop_twist_keyboard', 'teleop_twist_keyboard')
 HELP = """

@@ -18,7 +18,7 @@ from std_msgs.msg import String
 import rosbag2_py
 from rosbag2_interfaces import msg as bag_msg
 from rosbag2_interfaces import srv
-from support import ros2
+from ws_testing import ros2
 
 PAYLOAD = 'x' * 40
 
@@ -218,6 +218,10 @@ def test_player_burst_and_play_services(launch, probe, tmp_path):
     config = tmp_path / 'read.yaml'
     config.write_text('read:\n  pragmas: ["cache_size = 1000"]\n')
     heard = probe.collect(String, '/chatter')
+    services = {'burst': srv.Burst, 'play': srv.Play, 'play_next': srv.PlayNext,
+                'set_rate': srv.SetRate, 'resume': srv.Resume, 'pause': srv.Pause}
+    for name, kind in services.items():  # before the player: no first-call race (probe.client)
+        probe.client(kind, f'/rosbag2_player/{name}')
     player = launch(argv=['ros2', 'bag', 'play', '--start-paused', str(bag),
                           '--storage-config-file', str(config)])
     probe.spin_until(lambda: probe.node.count_publishers('/chatter') == 1, 10, 'the player')
