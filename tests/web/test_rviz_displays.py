@@ -279,7 +279,7 @@ def test_tool_belt_publishes_poses_and_points_where_the_user_clicks(ros_env, pro
     assert [p['topic'] for p in published] == ['/initialpose', '/goal_pose', '/clicked_point']
     assert len(initial) == len(goals) == len(points) == 1
     # While dragging, the goal's arrow was drawn (green) along its direction.
-    shown = PILImage.open(Path(__file__).resolve().parent.parent / 'artifacts' / 'rqt' /
+    shown = PILImage.open(Path(__file__).resolve().parents[2] / 'artifacts' / 'rqt' /
                           'rviz_tools.png').convert('RGB')
     green = [(x, y) for x in range(int(arrow_at[0]) - 15, int(arrow_at[0]) + 16)
              for y in range(int(arrow_at[1]) - 15, int(arrow_at[1]) + 16)

@@ -21,7 +21,7 @@ from support import ros2, turtle_qos
 from support import run_checked as run
 
 SPAWN = 5.544445  # turtlesim's first turtle starts in the middle
-PAGE_FILES = Path(__file__).parent / 'data' / 'launch_tutorial'
+PAGE_FILES = Path(__file__).parents[1] / 'data' / 'launch_tutorial'
 DATA_FILES = '''\
         (os.path.join('share', package_name, 'launch'),
             glob(os.path.join('launch', '*launch.[pxy][yma]*'))),

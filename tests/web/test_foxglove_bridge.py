@@ -28,7 +28,7 @@ from turtlesim.msg import Pose
 
 from support import Background, TestNode, collect_stamped, wait_until
 
-CLIENT_DIR = Path(__file__).parent / 'foxglove_client'
+CLIENT_DIR = Path(__file__).parents[1] / 'foxglove_client'
 PROTOCOLS = ['foxglove.websocket.v1', 'foxglove.sdk.v1']
 ASSETS = r'^package://turtlesim/(?:[-\w]+/)*[-\w.]+\.(?:xml|png)$'
 POSE_SCHEMA = ('float32 x\nfloat32 y\nfloat32 theta\n\nfloat32 linear_velocity\n'

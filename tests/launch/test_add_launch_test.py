@@ -12,7 +12,7 @@ from pathlib import Path
 
 from support import run_checked
 
-EXAMPLES = Path(__file__).parent / 'data' / 'launch_testing'
+EXAMPLES = Path(__file__).parents[1] / 'data' / 'launch_testing'
 
 CMAKE_TESTS = """if(BUILD_TESTING)
   find_package(ament_cmake_ros REQUIRED)

@@ -22,7 +22,7 @@ from pathlib import Path
 import pytest
 from node_runtime.discovery import profile_path
 
-DATA = Path(__file__).parent / 'data'
+DATA = Path(__file__).parents[1] / 'data'
 LOG = r'^\[INFO\] \[[\d.]+\] '
 DEFAULT = 'client_cb_group = None\n        timer_cb_group = None\n'
 # (the page's two lines, whether the client gets its answers)

@@ -21,7 +21,7 @@ import pytest
 
 from support import executable
 
-FLEXIBLE_URDF = Path(__file__).resolve().parents[1] / 'src/urdf_tutorial/urdf/06-flexible.urdf'
+FLEXIBLE_URDF = Path(__file__).resolve().parents[2] / 'src/urdf_tutorial/urdf/06-flexible.urdf'
 CLEAN = {0, 2, 130, 143, -signal.SIGINT, -signal.SIGTERM}
 # (label, argv builder, a regex seen once it works, or None: wait 1.5 s instead)
 SUBJECTS = [

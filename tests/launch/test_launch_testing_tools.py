@@ -33,7 +33,7 @@ import launch_testing
 from launch import LaunchDescription, LaunchService
 from launch_testing_ros import DataRepublisher
 
-EXAMPLES = Path(__file__).parent / 'data' / 'launch_testing'
+EXAMPLES = Path(__file__).parents[1] / 'data' / 'launch_testing'
 
 
 def run(env: dict[str, str], *args: str) -> subprocess.CompletedProcess[str]:

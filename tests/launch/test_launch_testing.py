@@ -15,7 +15,7 @@ from pathlib import Path
 
 from support import run_checked
 
-EXAMPLES = Path(__file__).parent / 'data' / 'launch_testing'
+EXAMPLES = Path(__file__).parents[1] / 'data' / 'launch_testing'
 
 
 def launch_test(env: dict[str, str], name: str) -> subprocess.CompletedProcess[str]:

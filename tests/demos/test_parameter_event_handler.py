@@ -15,7 +15,7 @@ import pytest
 from support import run_checked
 
 # The page's node, with section 3.1's second callback (parameter_blackboard's parameter).
-NODE = Path(__file__).parent / 'data' / 'parameter_event_handler' / 'parameter_event_handler.py'
+NODE = Path(__file__).parents[1] / 'data' / 'parameter_event_handler' / 'parameter_event_handler.py'
 ENTRY_POINT = ("            'node_with_parameters = "
                "python_parameter_event_handler.parameter_event_handler:main',\n")
 

@@ -101,7 +101,7 @@ def test_every_key_of_this_workspace_resolves(ros_env, tmp_path) -> None:
     """The page's commands typed in this workspace itself: each key its packages declare is
     a ROS package of the environment or has a rule (a new dependency needs one)."""
     env = dict(ros_env, ROSDEP_WORKSPACE_STATE=str(tmp_path / 'rosdep'))
-    repo = Path(__file__).resolve().parent.parent
+    repo = Path(__file__).resolve().parents[2]
     check = rosdep(repo, env, 'check', '--from-paths', 'src', '--ignore-src')
     assert 'no rule resolves' not in check.stderr, check.stderr
     # Only system packages (the apt ones setup does not install) may be left to install.

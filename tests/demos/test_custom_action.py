@@ -15,7 +15,7 @@ import pytest
 
 from support import run_checked
 
-PAGE_FILES = Path(__file__).parent / 'data' / 'action_tutorial'
+PAGE_FILES = Path(__file__).parents[1] / 'data' / 'action_tutorial'
 ACTION = 'int32 order\n---\nint32[] sequence\n---\nint32[] partial_sequence\n'
 CMAKE = '''find_package(rosidl_default_generators REQUIRED)
 
