@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from support import run_checked
+from ws_testing import colcon_workspace
 
 PAGE_FILES = Path(__file__).parents[1] / 'data' / 'action_tutorial'
 ACTION = 'int32 order\n---\nint32[] sequence\n---\nint32[] partial_sequence\n'
@@ -33,26 +33,19 @@ XML = '''  <buildtool_depend>rosidl_default_generators</buildtool_depend>
 
 @pytest.fixture(scope='module')
 def workspace(tmp_path_factory) -> Path:
-    from support import leased_domain, ros_environment
-    root = tmp_path_factory.mktemp('ros2_ws')
-    src = root / 'src'
-    src.mkdir()
-    with leased_domain() as domain:
-        env = ros_environment(domain)
-        run_checked(['ros2', 'pkg', 'create', '--license', 'Apache-2.0',
-                     'custom_action_interfaces'], src, env)
-    package = src / 'custom_action_interfaces'
-    (package / 'action').mkdir()
-    (package / 'action' / 'Fibonacci.action').write_text(ACTION)
-    cmake = (package / 'CMakeLists.txt').read_text()
-    (package / 'CMakeLists.txt').write_text(cmake.replace('ament_package()',
-                                                          CMAKE + 'ament_package()'))
-    xml = (package / 'package.xml').read_text()
-    (package / 'package.xml').write_text(xml.replace('  <export>', XML + '  <export>'))
-    run_checked(['colcon', 'build'], root, env, timeout=400)
+    with colcon_workspace(tmp_path_factory) as ws:
+        package = ws.create('custom_action_interfaces', '--license', 'Apache-2.0')
+        (package / 'action').mkdir()
+        (package / 'action' / 'Fibonacci.action').write_text(ACTION)
+        cmake = (package / 'CMakeLists.txt').read_text()
+        (package / 'CMakeLists.txt').write_text(cmake.replace('ament_package()',
+                                                              CMAKE + 'ament_package()'))
+        xml = (package / 'package.xml').read_text()
+        (package / 'package.xml').write_text(xml.replace('  <export>', XML + '  <export>'))
+        ws.build()
     for name in ('fibonacci_action_server.py', 'fibonacci_action_client.py'):
-        shutil.copy(PAGE_FILES / name, root)
-    return root
+        shutil.copy(PAGE_FILES / name, ws.root)
+    return ws.root
 
 
 def sourced(workspace: Path, command: str) -> list[str]:

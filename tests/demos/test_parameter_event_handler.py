@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from support import run_checked
+from ws_testing import colcon_workspace
 
 # The page's node, with section 3.1's second callback (parameter_blackboard's parameter).
 NODE = Path(__file__).parents[1] / 'data' / 'parameter_event_handler' / 'parameter_event_handler.py'
@@ -22,24 +22,16 @@ ENTRY_POINT = ("            'node_with_parameters = "
 
 @pytest.fixture(scope='module')
 def workspace(tmp_path_factory) -> Path:
-    from support import leased_domain, ros_environment
-    root = tmp_path_factory.mktemp('ros2_ws')
-    src = root / 'src'
-    src.mkdir()
-    with leased_domain() as domain:
-        env = ros_environment(domain)
-        run_checked(['ros2', 'pkg', 'create', '--build-type', 'ament_python', '--license',
-                     'Apache-2.0', 'python_parameter_event_handler', '--dependencies', 'rclpy'],
-                    src, env)
-        package = src / 'python_parameter_event_handler'
+    with colcon_workspace(tmp_path_factory) as ws:
+        package = ws.create('python_parameter_event_handler', '--build-type', 'ament_python',
+                            '--license', 'Apache-2.0', '--dependencies', 'rclpy')
         shutil.copy(NODE, package / 'python_parameter_event_handler')
         setup = (package / 'setup.py').read_text()
         assert "'console_scripts': [\n" in setup, setup
         (package / 'setup.py').write_text(setup.replace("'console_scripts': [\n",
                                                         "'console_scripts': [\n" + ENTRY_POINT))
-        run_checked(['colcon', 'build', '--packages-select', 'python_parameter_event_handler'],
-                    root, env)
-    return root
+        ws.build('--packages-select', 'python_parameter_event_handler', timeout=240)
+    return ws.root
 
 
 def test_the_pages_callbacks(workspace, ros_env, launch) -> None:

@@ -18,7 +18,7 @@ import pytest
 from turtlesim.msg import Pose
 
 from support import ros2, turtle_qos
-from support import run_checked as run
+from ws_testing import colcon_workspace
 
 SPAWN = 5.544445  # turtlesim's first turtle starts in the middle
 PAGE_FILES = Path(__file__).parents[1] / 'data' / 'launch_tutorial'
@@ -34,27 +34,21 @@ DATA_FILES = '''\
 
 @pytest.fixture(scope='module')
 def workspace(tmp_path_factory) -> Path:
-    from support import leased_domain, ros_environment
-    root = tmp_path_factory.mktemp('large_ws')
-    src = root / 'src'
-    src.mkdir()
-    with leased_domain() as domain:
-        env = ros_environment(domain)
-        run(['ros2', 'pkg', 'create', '--build-type', 'ament_python', '--license',
-             'Apache-2.0', 'launch_tutorial'], src, env)
-    package = src / 'launch_tutorial'
-    (package / 'launch').mkdir()
-    (package / 'config').mkdir()
-    for page_file in PAGE_FILES.glob('*launch.py'):
-        shutil.copy(page_file, package / 'launch')
-    shutil.copy(PAGE_FILES / 'turtlesim.yaml', package / 'config')
-    setup = (package / 'setup.py').read_text()
-    setup = 'import os\nfrom glob import glob\n' + setup.replace(
-        "        ('share/' + package_name, ['package.xml']),\n",
-        "        ('share/' + package_name, ['package.xml']),\n" + DATA_FILES)
-    (package / 'setup.py').write_text(setup)
-    run(['colcon', 'build', '--symlink-install'], root, env)
-    return root
+    with colcon_workspace(tmp_path_factory, 'large_ws') as ws:
+        package = ws.create('launch_tutorial', '--build-type', 'ament_python', '--license',
+                            'Apache-2.0')
+        (package / 'launch').mkdir()
+        (package / 'config').mkdir()
+        for page_file in PAGE_FILES.glob('*launch.py'):
+            shutil.copy(page_file, package / 'launch')
+        shutil.copy(PAGE_FILES / 'turtlesim.yaml', package / 'config')
+        setup = (package / 'setup.py').read_text()
+        setup = 'import os\nfrom glob import glob\n' + setup.replace(
+            "        ('share/' + package_name, ['package.xml']),\n",
+            "        ('share/' + package_name, ['package.xml']),\n" + DATA_FILES)
+        (package / 'setup.py').write_text(setup)
+        ws.build('--symlink-install', timeout=240)
+    return ws.root
 
 
 def test_the_pages_top_level_launch_file(workspace, launch, ros_env, probe) -> None:
