@@ -4,6 +4,7 @@ of the control nodes and decorators, on tiny trees of scripted test leaves (no R
 from __future__ import annotations
 
 import time
+from pathlib import Path
 from typing import ClassVar
 
 import pytest
@@ -208,3 +209,29 @@ def test_engine_runs_until_done_and_halts_on_cancel():
     assert engine.run(t, lambda: None, lambda: False, 0.001) == BtStatus.FAILED
     assert failures == ["Behavior tree threw exception: Recovery Node 'RecoveryNode' must only "
                         'have 2 children.. Exiting with failure.']
+
+
+def test_the_default_trees_use_only_known_nodes_and_ports():
+    from ament_index_python.packages import get_package_share_directory
+    from nav2_behavior_tree.behavior_tree_engine import builtin_nodes
+    from nav2_behavior_tree.xml_parser import RESERVED, parse_xml
+
+    registry = builtin_nodes()
+    folder = Path(get_package_share_directory('nav2_bt_navigator')) / 'behavior_trees'
+    trees = sorted(folder.glob('*.xml'))
+    assert [t.name for t in trees] == ['navigate_through_poses_w_replanning_and_recovery.xml',
+                                       'navigate_to_pose_w_replanning_and_recovery.xml']
+    for tree_file in trees:
+        root = parse_xml(tree_file.read_text())
+        assert root.attrib == {'BTCPP_format': '4', 'main_tree_to_execute': 'MainTree'}
+        elements = [root.children[0].children[0]]
+        seen = set()
+        while elements:
+            element = elements.pop()
+            elements.extend(element.children)
+            ports = registry[element.tag].ports()
+            assert set(element.attrib) - RESERVED <= set(ports), (tree_file.name, element.tag)
+            seen.add(element.tag)
+        assert {'ComputePathToPose', 'ComputePathThroughPoses'} & seen
+        assert {'FollowPath', 'Spin', 'Wait', 'BackUp', 'ClearEntireCostmap', 'GoalUpdated',
+                'RoundRobin', 'PipelineSequence', 'RateController'} <= seen
