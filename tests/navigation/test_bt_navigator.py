@@ -22,7 +22,7 @@ from geometry_msgs.msg import PoseStamped
 from nav2_msgs.action import ComputePathToPose, NavigateThroughPoses, NavigateToPose
 from rclpy.action import ActionClient
 
-from support import TestNode
+from support import TestNode, wait_until
 
 WIDTH, HEIGHT = 120, 80  # cells of 5 cm
 STAND_INS = Path(__file__).with_name('bt_navigator_stand_ins.py')
@@ -216,13 +216,40 @@ def test_basic_navigator_go_to_pose_and_through_poses(stack, module_launch):
                 feedback = nav.getFeedback() or feedback
             print('result', nav.getResult() == TaskResult.SUCCEEDED,
                   'feedback', feedback is not None, flush=True)
+        nav.goToPose(pose(4.5, 1.5))  # the stand-in follows this path until canceled
+        for _ in range(100):
+            if nav.getFeedback() is not None:
+                break
+            nav.isTaskComplete()
+        nav.cancelTask()
+        for _ in range(100):
+            if nav.isTaskComplete():
+                break
+        print('canceled', nav.getResult() == TaskResult.CANCELED, flush=True)
         nav.destroyNode()
         rclpy.shutdown()
     '''))
     process = module_launch(argv=[sys.executable, str(script)])
     assert process.wait(timeout=90) == 0, process.output
     assert process.output.count('result True feedback True') == 2, process.output
+    assert 'canceled True' in process.output, process.output
     stand_ins.wait_for_output(r'follow_path goal: \d+ poses to \(3\.00, 1\.50\)')
+
+
+def test_a_pose_on_goal_pose_navigates(stack):
+    navigator, stand_ins, probe, _directory = stack
+    publisher = probe.node.create_publisher(PoseStamped, 'goal_pose', 10)
+    succeeded = navigator.output.count('Goal succeeded')
+    try:
+        probe.spin_until(lambda: publisher.get_subscription_count() > 0, 10.0,
+                         "bt_navigator's goal_pose subscription")
+        publisher.publish(pose(2.2, 1.2))  # as RViz's "2D Goal Pose" tool sends it
+        navigator.wait_for_output(r'to \(2\.20, 1\.20\)')
+        stand_ins.wait_for_output(r'follow_path goal: \d+ poses to \(2\.20, 1\.20\)')
+        wait_until(lambda: navigator.output.count('Goal succeeded') > succeeded, 15.0,
+                   'the navigation to succeed')
+    finally:
+        probe.node.destroy_publisher(publisher)
 
 
 def test_second_goal_preempts_and_cancel_ends_canceled(stack, navigate):
