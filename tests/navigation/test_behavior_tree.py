@@ -99,6 +99,12 @@ def test_ports_read_literals_and_blackboard_and_subtrees_remap():
     assert board.get('from_inner') == 5  # the literal '5' converted by the port's type
     assert board.get('result') is None  # the subtree's key stayed in the subtree
     assert board.get('rooted') == 7
+    # Nav2's handles and timeouts reach the leaves of a subtree that does not remap them
+    board.set('server_timeout', 0.25)
+    _, t = tree('<SubTree ID="Inner" result="{timeout}"/>', board,
+                extra='<BehaviorTree ID="Inner"><Script value="{server_timeout}" '
+                      'out="{result}"/></BehaviorTree>')
+    assert t.tick_once() == S and board.get('timeout') == 0.25
 
 
 def test_sequence_resumes_at_the_running_child_and_fallback_stops_at_success():

@@ -27,6 +27,11 @@ RESERVED = {'name', 'ID', '_autoremap', '_skipIf', '_successIf', '_failureIf', '
             '_onSuccess', '_onFailure', '_onHalted', '_post', '_description', '_uid',
             '_fullpath'}
 EXPLICIT_TAGS = {'Action', 'Condition', 'Control', 'Decorator'}
+# What Nav2's BtActionServer puts on every subtree's blackboard too: the leaves' ROS handles
+# and timeouts (a subtree's blackboard is otherwise empty but for its remapped ports).
+SHARED_KEYS = ('node', 'tf_buffer', 'odom_smoother', 'server_timeout', 'cancel_timeout',
+               'bt_loop_duration', 'wait_for_service_timeout', 'global_frame',
+               'robot_base_frame', 'transform_tolerance', 'goal_reached_tol')
 
 
 @dataclass
@@ -217,6 +222,9 @@ class TreeBuilder:
         autoremap = attrib.get('_autoremap', 'false').lower() == 'true'
         remapping = {}
         child_board = Blackboard(blackboard, remapping, autoremap)
+        for key in SHARED_KEYS:
+            if blackboard.has(key):
+                child_board.set(key, blackboard.get(key))
         for port, text in attrib.items():
             if port in RESERVED:
                 continue
