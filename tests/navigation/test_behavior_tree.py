@@ -241,3 +241,16 @@ def test_the_default_trees_use_only_known_nodes_and_ports():
         assert {'ComputePathToPose', 'ComputePathThroughPoses'} & seen
         assert {'FollowPath', 'Spin', 'Wait', 'BackUp', 'ClearEntireCostmap', 'GoalUpdated',
                 'RoundRobin', 'PipelineSequence', 'RateController'} <= seen
+
+
+def test_status_changes_reach_an_observer():
+    _, t = tree('<Sequence name="seq"><Script name="a"/><Script name="b" script="RS"/>'
+                '</Sequence>')
+    changes = []
+    for node in t.nodes:
+        node.observer = lambda n, old, new: changes.append((n.name, old.name, new.name))
+    ticks(t, 2)
+    assert changes == [('seq', 'IDLE', 'RUNNING'), ('a', 'IDLE', 'SUCCESS'),
+                       ('b', 'IDLE', 'RUNNING'), ('b', 'RUNNING', 'SUCCESS'),
+                       ('a', 'SUCCESS', 'IDLE'), ('b', 'SUCCESS', 'IDLE'),
+                       ('seq', 'RUNNING', 'SUCCESS')]

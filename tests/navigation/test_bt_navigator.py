@@ -20,6 +20,7 @@ import pytest
 from action_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
 from nav2_msgs.action import ComputePathToPose, NavigateThroughPoses, NavigateToPose
+from nav2_msgs.msg import BehaviorTreeLog
 from rclpy.action import ActionClient
 
 from support import TestNode, wait_until
@@ -169,7 +170,8 @@ def navigate(stack):
 
 
 def test_navigate_to_pose_plans_then_follows_with_feedback(stack, navigate):
-    navigator, stand_ins, _probe, _directory = stack
+    navigator, stand_ins, probe, _directory = stack
+    logs = probe.collect(BehaviorTreeLog, '/behavior_tree_log')
     run = navigate(NavigateToPose.Goal(pose=pose(2.5, 1.5)))
     status, result = run.finish()
     assert status == GoalStatus.STATUS_SUCCEEDED, result.error_msg
@@ -188,6 +190,14 @@ def test_navigate_to_pose_plans_then_follows_with_feedback(stack, navigate):
     assert straight - 0.05 <= last.distance_remaining < straight + 0.5
     assert last.number_of_recoveries == 0
     assert last.navigation_time.sec + last.navigation_time.nanosec * 1e-9 > 0.0
+    # the tree's status changes on behavior_tree_log: planned, then followed
+    def changes() -> list[tuple[str, str]]:
+        return [(e.node_name, e.current_status) for log in logs for e in log.event_log]
+
+    probe.spin_until(lambda: ('NavigateRecovery', 'SUCCESS') in changes(), 5.0,
+                     "the tree's root to succeed on behavior_tree_log")
+    assert ('ComputePathToPose', 'SUCCESS') in changes()
+    assert ('FollowPath', 'RUNNING') in changes()
 
 
 def test_basic_navigator_go_to_pose_and_through_poses(stack, module_launch):

@@ -134,7 +134,9 @@ class TreeNode:
         self.name = name
         self.attributes = attributes  # port name -> literal or {reference}
         self.blackboard = blackboard
-        self.status = NodeStatus.IDLE
+        # called with (node, previous, current) on every status change (RosTopicLogger)
+        self.observer: Callable[[TreeNode, NodeStatus, NodeStatus], None] | None = None
+        self._status = NodeStatus.IDLE
         # set before __init__ by the XML reader (errors name the line)
         self.registration_name = getattr(self, 'registration_name', type(self).__name__)
         self.line = getattr(self, 'line', 0)
@@ -142,6 +144,16 @@ class TreeNode:
     @classmethod
     def ports(cls) -> dict[str, Port]:
         return cls.PORTS
+
+    @property
+    def status(self) -> NodeStatus:
+        return self._status
+
+    @status.setter
+    def status(self, status: NodeStatus) -> None:
+        previous, self._status = self._status, status
+        if previous != status and self.observer is not None:
+            self.observer(self, previous, status)
 
     # --- ports --------------------------------------------------------------------------
     def get_input(self, port: str, default: Any = None) -> Any:

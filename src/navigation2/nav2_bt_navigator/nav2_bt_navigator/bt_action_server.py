@@ -19,6 +19,7 @@ from typing import Any
 import rclpy
 from nav2_behavior_tree.behavior_tree_engine import BehaviorTreeEngine, BtStatus
 from nav2_behavior_tree.core import Blackboard
+from nav2_behavior_tree.ros_topic_logger import RosTopicLogger
 from nav2_behavior_tree.xml_parser import Tree
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.callback_groups import ReentrantCallbackGroup
@@ -56,6 +57,7 @@ class BtActionServer:
         for key, value in blackboard_values.items():
             self.blackboard.set(key, value)
         self.tree: Tree | None = None
+        self.topic_logger: RosTopicLogger | None = None
         self.current_bt = ''
         self.error_msg = ''  # why the last goal could not start (goal_received said no)
         self._lock = threading.Lock()
@@ -94,9 +96,15 @@ class BtActionServer:
         self.deactivate()
         if self.tree is not None:
             self.tree.halt_tree()
-            self.tree.close()
-        self.tree, self.current_bt = None, ''
+        self._close_tree()
         self.server.destroy()
+
+    def _close_tree(self) -> None:
+        if self.topic_logger is not None:
+            self.topic_logger.close()
+        if self.tree is not None:
+            self.tree.close()
+        self.tree, self.topic_logger, self.current_bt = None, None, ''
 
     # --- the tree ----------------------------------------------------------------------
     def load_behavior_tree(self, filename: str) -> bool:
@@ -108,15 +116,14 @@ class BtActionServer:
             self.error_msg = f"Couldn't open input XML file: {filename}"
             self.logger.error(self.error_msg)
             return False
-        if self.tree is not None:
-            self.tree.close()
-            self.tree, self.current_bt = None, ''
+        self._close_tree()
         try:
             self.tree = self.engine.create_tree_from_file(filename, self.blackboard)
         except Exception as error:  # the XML's or a node's error: the goal fails, not us
             self.error_msg = f'Exception when loading BT: {error}'
             self.logger.error(self.error_msg)
             return False
+        self.topic_logger = RosTopicLogger(self.blackboard.get('node'), self.tree)
         self.current_bt = filename
         return True
 
@@ -221,6 +228,7 @@ class BtActionServer:
                 self._finish(pending, BtStatus.CANCELED, self.action_type.Result())
         elif pending is not None:
             self.on_preempt(pending.request)
+        self.topic_logger.flush()
         self.on_loop()
 
     def _execute(self, handle: Any) -> None:
@@ -236,6 +244,7 @@ class BtActionServer:
                                  self.settings['bt_loop_duration'],
                                  keep_running=lambda: self._active and rclpy.ok())
         self.engine.halt_all_actions(self.tree)
+        self.topic_logger.flush()
         result = self.action_type.Result()
         self.populate_error_code(result)
         with self._lock:
