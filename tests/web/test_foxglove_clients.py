@@ -19,10 +19,12 @@ from pathlib import Path
 import pytest
 import websockets
 from sensor_msgs.msg import Image
-from test_foxglove_bridge import Driver, pytestmark  # noqa: F401 (skip without node)
 
 from rqt_browser import start_rqt
 from support import Background, RosProcess, TestNode, ros2, wait_until
+from ws_testing.foxglove import Driver, needs_client
+
+pytestmark = needs_client  # the foxglove client (node, npm)
 
 BOTH = 'foxglove.sdk.v1,foxglove.websocket.v1'  # offered together, as Lichtblick does
 # What the SDK's server or a socket library prints when a client's connection ends badly.

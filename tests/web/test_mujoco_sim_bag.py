@@ -13,10 +13,10 @@ from geometry_msgs.msg import Twist, Vector3
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from test_mujoco_sim_rviz import DIFFBOT_LINKS
-from test_rviz_displays import rviz_page
 
 from rqt_browser import chromium_missing
 from support import RosProcess, TestNode
+from ws_testing.browser import rviz_page
 
 RECORDED = ('/clock', '/scan', '/odom', '/tf', '/tf_static', '/camera/image_raw',
             '/robot_description')

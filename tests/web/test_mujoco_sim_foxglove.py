@@ -9,9 +9,11 @@ import re
 from pathlib import Path
 
 import pytest
-from test_foxglove_bridge import Driver, pytestmark  # noqa: F401 (skip without node)
 
 from support import RosProcess
+from ws_testing.foxglove import Driver, needs_client
+
+pytestmark = needs_client  # the foxglove client (node, npm)
 
 # Per topic: its type and a line of that type's own text, or of a type it embeds.
 SCHEMAS = {

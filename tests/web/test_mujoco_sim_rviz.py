@@ -8,10 +8,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from test_rviz_displays import rviz_page
 
 from rqt_browser import chromium_missing, screenshot
 from support import RosProcess, TestNode
+from ws_testing.browser import rviz_page
 
 DIFFBOT_LINKS = {'base_link', 'caster_link', 'left_wheel_link', 'right_wheel_link',
                  'lidar_link', 'camera_link'}

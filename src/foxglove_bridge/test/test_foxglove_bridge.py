@@ -8,13 +8,8 @@ a real turtlesim: poses from an rclpy probe, the canvas PNG, the parameter on th
 
 from __future__ import annotations
 
-import json
-import queue
-import shutil
-import subprocess
-import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -26,72 +21,15 @@ from rcl_interfaces.srv import GetParameters, SetParameters
 from std_srvs.srv import Trigger
 from turtlesim.msg import Pose
 
-from support import Background, TestNode, collect_stamped, wait_until
+from ws_testing import Background, TestNode, collect_stamped, wait_until
+from ws_testing.foxglove import Driver, needs_client
 
-CLIENT_DIR = Path(__file__).parents[1] / 'foxglove_client'
 PROTOCOLS = ['foxglove.websocket.v1', 'foxglove.sdk.v1']
 ASSETS = r'^package://turtlesim/(?:[-\w]+/)*[-\w.]+\.(?:xml|png)$'
 POSE_SCHEMA = ('float32 x\nfloat32 y\nfloat32 theta\n\nfloat32 linear_velocity\n'
                'float32 angular_velocity')
 
-pytestmark = pytest.mark.skipif(
-    shutil.which('node') is None or not (CLIENT_DIR / 'node_modules').is_dir(),
-    reason='needs node and tests/foxglove_client/node_modules (scripts/test runs npm ci)')
-
-
-class Driver:
-    """driver.mjs as a child process: JSON commands in, JSON events out."""
-
-    def __init__(self, url: str, subprotocol: str) -> None:
-        self.popen = subprocess.Popen(
-            ['node', str(CLIENT_DIR / 'driver.mjs'), url, subprotocol], stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1)
-        self.events: list[dict[str, Any]] = []
-        self._lines: queue.Queue[str] = queue.Queue()
-        self._reader = threading.Thread(target=self._read, daemon=True)
-        self._reader.start()
-
-    def _read(self) -> None:
-        for line in self.popen.stdout:
-            try:
-                self.events.append(json.loads(line))
-            except ValueError:
-                self.events.append({'event': 'stray', 'text': line})
-
-    def send(self, op: str, **fields: Any) -> dict[str, Any]:
-        count = len(self.events)
-        self.popen.stdin.write(json.dumps({'op': op, **fields}) + '\n')
-        self.popen.stdin.flush()
-        return self.wait(lambda e: e.get('command') == op, f'the answer to {op}', since=count)
-
-    def wait(self, predicate: Callable[[dict[str, Any]], bool], what: str,
-             timeout: float = 10.0, since: int = 0) -> dict[str, Any]:
-        deadline = time.monotonic() + timeout
-        while True:
-            for event in self.events[since:]:
-                if predicate(event):
-                    if event.get('event') == 'failed':
-                        raise AssertionError(f'driver failed: {event}')
-                    return event
-            if time.monotonic() > deadline:
-                raise AssertionError(f'timed out after {timeout} s waiting for {what}; '
-                                     f'events: {self.summary()}')
-            time.sleep(0.02)
-
-    def summary(self) -> str:
-        return '\n'.join(json.dumps(e)[:300] for e in self.events[-30:])
-
-    def of(self, kind: str, since: int = 0) -> list[dict[str, Any]]:
-        return [e for e in self.events[since:] if e.get('event') == kind]
-
-    def close(self) -> None:
-        if self.popen.poll() is None:
-            self.popen.stdin.close()
-            try:
-                self.popen.wait(timeout=5)
-            except subprocess.TimeoutExpired:
-                self.popen.kill()
-                self.popen.wait()
+pytestmark = needs_client
 
 
 @pytest.fixture(scope='module')

@@ -22,7 +22,7 @@ import pytest
 from geometry_msgs.msg import Twist
 from websockets.sync.client import connect
 
-from support import TestNode, wait_until
+from ws_testing import TestNode, wait_until
 
 PROTOCOLS = ['foxglove.websocket.v1', 'foxglove.sdk.v1']
 ATTACK_X = 9.0   # what a refused page tries to publish

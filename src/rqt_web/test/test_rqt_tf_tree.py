@@ -14,8 +14,8 @@ from pathlib import Path
 
 import pytest
 
-from rqt_browser import chromium_missing, launch_browser, screenshot, start_rqt
-from support import RosProcess, executable, leased_domain, ros2, ros_environment
+from ws_testing import RosProcess, executable, leased_domain, ros2, ros_environment
+from ws_testing.browser import chromium_missing, launch_browser, screenshot, start_rqt
 
 EXPECTED_EDGES = {('world', 'mystaticturtle'), ('world', 'turtle1'), ('turtle1', 'carrot1')}
 

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from rqt_browser import chromium_missing, launch_browser, screenshot, start_rqt
-from support import RosProcess, executable, leased_domain, ros_environment
+from ws_testing import RosProcess, executable, leased_domain, ros_environment
+from ws_testing.browser import chromium_missing, launch_browser, screenshot, start_rqt
 
 
 def test_foxglove_page_says_how_to_connect_and_sees_the_bridge(tmp_path: Path) -> None:

@@ -30,9 +30,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from websockets.sync.client import connect
 
-from fuzz_support import CI, short, unknown_interface
-from rqt_browser import start_rqt
-from support import Background, TestNode, leased_domain, ros_environment
+from ws_testing import Background, TestNode, leased_domain, ros_environment
+from ws_testing.browser import start_rqt
+from ws_testing.fuzz import CI, short, unknown_interface
 
 CASES = int(os.environ.get('FUZZ_RQT_EXAMPLES', '2000'))
 TARGETS = {'/turtle1/cmd_vel': Twist, '/initialpose': PoseWithCovarianceStamped,

@@ -31,8 +31,8 @@ from std_msgs.msg import String
 from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import ClientConnection, connect
 
-from fuzz_support import CI, short, unknown_interface
-from support import Background, TestNode
+from ws_testing import Background, TestNode
+from ws_testing.fuzz import CI, short, unknown_interface
 
 SDK = 'foxglove.sdk.v1'
 PROTOCOLS = ['foxglove.websocket.v1', SDK]

@@ -16,7 +16,8 @@ from typing import Any
 
 import pytest
 
-from rqt_browser import (
+from ws_testing import RosProcess, TestNode, executable, leased_domain, ros2, ros_environment
+from ws_testing.browser import (
     RqtServer,
     canvas_pixel,
     chromium_missing,
@@ -27,7 +28,6 @@ from rqt_browser import (
     start_rqt,
     wait_for_pixel,
 )
-from support import RosProcess, TestNode, executable, leased_domain, ros2, ros_environment
 
 SHELLS = [(46, 139, 87), (34, 120, 60), (85, 107, 47), (0, 128, 128), (107, 142, 35),
           (60, 110, 160), (139, 90, 43), (120, 80, 150), (176, 120, 40), (70, 130, 80)]

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from rqt_browser import chromium_missing, launch_browser, screenshot, start_rqt
-from support import RosProcess, leased_domain, ros_environment
+from ws_testing import RosProcess, leased_domain, ros_environment
+from ws_testing.browser import chromium_missing, launch_browser, screenshot, start_rqt
 
 LINKS = {'axis', 'body', 'head', 'rod', 'box', 'leg1', 'leg2'}
 

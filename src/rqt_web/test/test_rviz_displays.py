@@ -12,44 +12,16 @@ import json
 import math
 import statistics
 import urllib.request
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
 import pytest
 import yaml
 
-from rqt_browser import chromium_missing, launch_browser, screenshot, start_rqt
-from support import Background, wait_until
+from ws_testing import wait_until
+from ws_testing.browser import SCREENSHOTS, chromium_missing, rviz_page, screenshot
 
 pytestmark = pytest.mark.skipif(chromium_missing() is not None, reason=str(chromium_missing()))
-
-VIEWPORT = {'width': 1280, 'height': 1000}
-
-
-@contextmanager
-def rviz_page(ros_env: dict[str, str], probe: Any, config: Path, tmp_path: Path,
-              before_browser: Callable[[Any], None] | None = None) -> Iterator[tuple[Any, Any]]:
-    """(rqt's server, its RViz page on `config` in headless Chromium), while a Background
-    thread spins `probe`; `before_browser(server)` runs before the browser starts. All stopped
-    afterwards."""
-    from playwright.sync_api import sync_playwright
-    server, _ = start_rqt(ros_env, tmp_path / 'state')
-    try:
-        with sync_playwright() as playwright, Background(probe):
-            if before_browser is not None:
-                before_browser(server)
-            browser = launch_browser(playwright)
-            try:
-                page = browser.new_page(viewport=VIEWPORT)
-                page.goto(server.page_url('/rviz', config=str(config)))
-                yield server, page
-            finally:
-                browser.close()
-    finally:
-        server.stop()
-
 
 def write_rviz(path: Path, fixed_frame: str, displays: list[dict], view: dict) -> Path:
     """A .rviz file in upstream rviz2's layout."""
@@ -279,8 +251,7 @@ def test_tool_belt_publishes_poses_and_points_where_the_user_clicks(ros_env, pro
     assert [p['topic'] for p in published] == ['/initialpose', '/goal_pose', '/clicked_point']
     assert len(initial) == len(goals) == len(points) == 1
     # While dragging, the goal's arrow was drawn (green) along its direction.
-    shown = PILImage.open(Path(__file__).resolve().parents[2] / 'artifacts' / 'rqt' /
-                          'rviz_tools.png').convert('RGB')
+    shown = PILImage.open(SCREENSHOTS / 'rviz_tools.png').convert('RGB')
     green = [(x, y) for x in range(int(arrow_at[0]) - 15, int(arrow_at[0]) + 16)
              for y in range(int(arrow_at[1]) - 15, int(arrow_at[1]) + 16)
              if (p := shown.getpixel((x, y)))[1] > 200 and p[0] < 100 and p[2] < 100]
