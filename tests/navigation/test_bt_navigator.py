@@ -72,6 +72,18 @@ global_costmap:
         plugin: "nav2_costmap_2d::InflationLayer"
         inflation_radius: 0.4
 """
+CHECKS_TREE = """\
+<root BTCPP_format="4" main_tree_to_execute="MainTree">
+  <BehaviorTree ID="MainTree">
+    <Sequence>
+      <ComputePathToPose goal="{goal}" path="{path}"/>
+      <GetPoseFromPath path="{path}" index="-1" pose="{end}"/>
+      <ArePosesNear ref_pose="{end}" target_pose="{goal}" tolerance="0.1"/>
+      <CancelControl/>
+    </Sequence>
+  </BehaviorTree>
+</root>
+"""
 UNKNOWN_NODE_TREE = """\
 <root BTCPP_format="4" main_tree_to_execute="MainTree">
   <BehaviorTree ID="MainTree">
@@ -322,3 +334,25 @@ def test_bad_goals_abort_with_one_line(stack, navigate):
                               NavigateThroughPoses, 'navigate_through_poses').finish()
     assert status == GoalStatus.STATUS_ABORTED
     assert 'is not finite' in result.error_msg
+
+
+def test_a_goal_tree_of_other_nav2_nodes_cancels_the_controller(stack, navigate):
+    from nav2_msgs.action import FollowPath
+
+    _navigator, stand_ins, probe, directory = stack
+    follow = ActionClient(probe.node, FollowPath, 'follow_path')
+    try:
+        assert follow.wait_for_server(timeout_sec=10.0)
+        path = ComputePathToPose.Result().path
+        path.poses = [pose(4.0, 1.0), pose(4.5, 1.0)]  # the stand-in follows it until canceled
+        running = Navigation(probe, follow, FollowPath.Goal(path=path))
+        stand_ins.wait_for_output(r'follow_path goal: 2 poses to \(4\.50, 1\.00\)')
+        tree = directory / 'checks.xml'
+        tree.write_text(CHECKS_TREE)
+        status, result = navigate(NavigateToPose.Goal(pose=pose(2.0, 1.4),
+                                                      behavior_tree=str(tree))).finish()
+        assert status == GoalStatus.STATUS_SUCCEEDED, result.error_msg
+        status, _ = running.finish()
+        assert status == GoalStatus.STATUS_CANCELED  # by CancelControl
+    finally:
+        follow.destroy()

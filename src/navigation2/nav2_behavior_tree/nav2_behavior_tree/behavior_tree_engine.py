@@ -31,7 +31,9 @@ def builtin_nodes(with_ros: bool = True) -> dict[str, type[TreeNode]]:
         registry.update(group)
     if with_ros:
         from nav2_behavior_tree.actions import ACTION_NODES
+        from nav2_behavior_tree.more_nodes import MORE_NODES
         registry.update(ACTION_NODES)
+        registry.update(MORE_NODES)
     return registry
 
 

@@ -79,7 +79,7 @@ class _ServerNode(ActionNode):
         self.node = self.blackboard.get('node')
         if self.node is None:
             raise BehaviorTreeException(f"{self.registration_name}: no 'node' on the blackboard")
-        self.server_name = self.get_input(self.NAME_PORT) or self.DEFAULT_NAME
+        self.server_name = self.resolve_server_name()
         ms = self.get_input('server_timeout')
         board = self.blackboard.get('server_timeout', 0.02)  # seconds
         self.server_timeout = max(ms / 1000.0 if ms is not None else board, MIN_SERVER_TIMEOUT)
@@ -88,6 +88,9 @@ class _ServerNode(ActionNode):
         self.group = self.blackboard.get('callback_group')
 
     NAME_PORT = 'server_name'
+
+    def resolve_server_name(self) -> str:
+        return self.get_input(self.NAME_PORT) or self.DEFAULT_NAME
 
     def log(self) -> Any:
         return self.node.get_logger()
