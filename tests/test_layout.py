@@ -34,7 +34,8 @@ ALLOWED_IN_CODE = {
     'my_robot_controller': {'node_runtime', 'turtlesim', 'example_interfaces'},
 }
 # A package's internals: importable, but by no other package (the simulator's code).
-PRIVATE_MODULES = {'turtlesim_py': 'turtlesim', 'logging_demo_py': 'logging_demo'}
+PRIVATE_MODULES = {'turtlesim_py': 'turtlesim', 'logging_demo_py': 'logging_demo',
+                   'slam_toolbox_py': 'slam_toolbox'}
 
 
 @dataclass
