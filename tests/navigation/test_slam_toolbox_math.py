@@ -1,11 +1,15 @@
 """slam_toolbox's maths as plain functions: the correlative scan matcher, the pose-graph
-optimiser, the occupancy raster and the pose-graph file format."""
+optimiser, the occupancy raster, the mapper (scan-to-buffer matching, localization) and the
+pose-graph file format."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
+import pytest
+from slam_toolbox_py import serialization
+from slam_toolbox_py.mapper import Mapper, MapperParams
 from slam_toolbox_py.occupancy import OccupancyMap
 from slam_toolbox_py.pose_graph import Edge, compose, optimize, relative
 from slam_toolbox_py.scan_matcher import LikelihoodField, SearchWindow, match, transform
@@ -104,3 +108,51 @@ def test_the_occupancy_map_marks_hits_occupied_and_rays_free():
     assert at(1.0, 0.01) == 0
     assert at(0.01, 0.5) == 0
     assert at(1.0, 1.0) == -1
+
+
+def _mapped_room(tmp_path) -> Mapper:
+    """A mapper that drove 1.2 m along x in the room, odometry 5 % long (the first pose
+    right: map and room frames are one)."""
+    world = _room_points()
+    mapper = Mapper(MapperParams(minimum_travel_distance=0.2, minimum_travel_heading=0.2))
+    for k in range(7):
+        truth = np.array([-1.0 + 0.2 * k, -0.5, 0.0])
+        odom = np.array([-1.0 + 0.21 * k, -0.5, 0.0])
+        mapper.process(odom, _scan_from(truth, world), np.zeros((0, 2)), np.zeros(2), k)
+    return mapper
+
+
+def test_scan_to_buffer_matching_corrects_the_odometry(tmp_path):
+    mapper = _mapped_room(tmp_path)
+    assert len(mapper.nodes) == 7
+    last = mapper.nodes[-1].pose
+    assert np.hypot(last[0] - 0.2, last[1] + 0.5) < 0.02, last  # odometry said 0.26
+
+
+def test_a_serialized_graph_reads_back_whole_and_localizes(tmp_path):
+    mapper = _mapped_room(tmp_path)
+    serialization.write(str(tmp_path / 'room'), mapper, 0.05)
+    assert (tmp_path / 'room.posegraph').is_file() and (tmp_path / 'room.data').is_file()
+    loaded = Mapper(MapperParams(minimum_travel_distance=0.2, minimum_travel_heading=0.2))
+    serialization.read(str(tmp_path / 'room.posegraph'), loaded)
+    assert len(loaded.nodes) == 7 and len(loaded.edges) == len(mapper.edges)
+    for a, b in zip(mapper.nodes, loaded.nodes, strict=True):
+        assert np.allclose(a.pose, b.pose) and np.allclose(a.hits, b.hits)
+    # localization: start near (not at) the truth, odometry from a new origin
+    truth = np.array([0.5, 0.3, 0.3])
+    loaded.start_at(truth + np.array([0.1, -0.08, 0.05]))
+    pose = loaded.localize(np.zeros(3), _scan_from(truth, _room_points()), 0.0)
+    assert np.hypot(*(pose[:2] - truth[:2])) < 0.02 and abs(pose[2] - truth[2]) < 0.01
+    assert len(loaded.nodes) == 7  # localization leaves the graph as it was
+    assert np.allclose(compose(loaded.map_to_odom(), np.zeros(3)), pose)
+
+
+def test_a_missing_or_foreign_graph_file_is_refused_and_changes_nothing(tmp_path):
+    mapper = _mapped_room(tmp_path)
+    before = [n.pose.copy() for n in mapper.nodes]
+    with pytest.raises(OSError):
+        serialization.read(str(tmp_path / 'nothing_here'), mapper)
+    (tmp_path / 'foreign.posegraph').write_text('{"format": "boost archive"}')
+    with pytest.raises(ValueError, match='not a slam_toolbox_py pose graph'):
+        serialization.read(str(tmp_path / 'foreign'), mapper)
+    assert all(np.allclose(n.pose, b) for n, b in zip(mapper.nodes, before, strict=True))
