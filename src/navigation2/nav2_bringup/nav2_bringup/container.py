@@ -20,13 +20,15 @@ import inspect
 import json
 import sys
 import threading
+import time
 from collections.abc import Callable
 from typing import Any
 
 import rclpy
 import rclpy.node
 from node_runtime.spinning import SIGNAL_CHECK_PERIOD, limit_shutdown, ros_session
-from rclpy.executors import MultiThreadedExecutor
+from rclpy._rclpy_pybind11 import InvalidHandle
+from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.node import Node
 from tf2_ros import TransformListener
 
@@ -70,9 +72,14 @@ def stop_listener_threads() -> None:
     context.ok() (the same lock) between spins: each join there waits out its 2 s timeout,
     which a process of one server affords and a container of ten does not.
     """
-    for obj in gc.get_objects():
-        if isinstance(obj, TransformListener):
-            obj._stop_spinning()
+    listeners = [obj for obj in gc.get_objects() if isinstance(obj, TransformListener)]
+    for listener in listeners:  # all told first: they wind down side by side
+        listener._stop.set()
+    deadline = time.monotonic() + 1.0
+    for listener in listeners:
+        thread = getattr(listener, 'dedicated_listener_thread', None)
+        if thread is not None:
+            thread.join(timeout=max(0.0, deadline - time.monotonic()))
 
 
 class Component:
@@ -95,7 +102,16 @@ class Component:
 
     def _spin(self) -> None:
         while rclpy.ok() and not self._stopped.is_set():
-            self.executor.spin_once(timeout_sec=SIGNAL_CHECK_PERIOD)
+            try:
+                self.executor.spin_once(timeout_sec=SIGNAL_CHECK_PERIOD)
+            except ExternalShutdownException:
+                return
+            except InvalidHandle:
+                # a transition destroyed a publisher or subscription while this thread
+                # waited on it: the next wait set is made without it
+                continue
+            except Exception as error:  # one failed callback must not stop the server
+                self.node.get_logger().error(f'Exception in {self.name}: {error!r}')
 
     def start(self, stopped: threading.Event) -> None:
         self._stopped = stopped

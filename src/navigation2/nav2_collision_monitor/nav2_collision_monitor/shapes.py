@@ -8,7 +8,6 @@ from typing import Any
 
 import numpy as np
 from nav2_util.parameters import declare_checked
-from rclpy.duration import Duration
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.time import Time
@@ -139,18 +138,18 @@ class ScanSource:
                 f'[{self.name}]: Latest source and current collision monitor node timestamps '
                 f'differ on {age:f} seconds. Ignoring the source.')
             return None
+        # No waiting for TF here: this runs in the command callback, and a wait would hold
+        # the scans back (upstream waits up to transform_tolerance on its own thread).
         try:
             if base_shift_correction:
                 t = tf_buffer.lookup_transform_full(
-                    base_frame, now, scan.header.frame_id, stamp, odom_frame,
-                    Duration(seconds=tolerance))
+                    base_frame, now, scan.header.frame_id, stamp, odom_frame)
             else:
-                t = tf_buffer.lookup_transform(base_frame, scan.header.frame_id, Time(),
-                                               Duration(seconds=tolerance))
-        except Exception:  # any TF failure makes the source invalid, as upstream
-            try:  # the lidar is fixed on the robot: its latest transform still holds
                 t = tf_buffer.lookup_transform(base_frame, scan.header.frame_id, Time())
-            except Exception:
+        except Exception:  # odom not yet at `now`: the lidar is fixed on the robot, so
+            try:  # its latest transform holds
+                t = tf_buffer.lookup_transform(base_frame, scan.header.frame_id, Time())
+            except Exception:  # no transform at all: the source is invalid, as upstream
                 return None
         ranges = np.asarray(scan.ranges, dtype=float)
         angles = scan.angle_min + scan.angle_increment * np.arange(len(ranges))
