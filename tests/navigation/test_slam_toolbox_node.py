@@ -33,7 +33,7 @@ slam_toolbox:
     transform_timeout: 0.1
     not_a_slam_toolbox_key: 3
 """
-SPEED = 0.2  # m/s along x, from x = -0.5
+SPEED = 0.2  # m/s along x, to and fro between x = -1 and 1
 BEAMS = 360
 
 
@@ -88,11 +88,16 @@ def test_bad_scans_and_a_missing_graph_neither_crash_nor_corrupt(
         start = time.monotonic()
 
         def x_now() -> float:
-            return -0.5 + SPEED * (time.monotonic() - start)
+            travelled = (SPEED * (time.monotonic() - start)) % 4.0
+            return -1.0 + (travelled if travelled < 2.0 else 4.0 - travelled)
+
+        odometry: dict[float, float] = {}
 
         def on_odom_tick() -> None:
-            tf_pub.publish(TFMessage(transforms=[_transform(
-                'odom', 'base_footprint', x_now(), node.get_clock().now().to_msg())]))
+            stamp, x = node.get_clock().now().to_msg(), x_now()
+            odometry[round(stamp.sec + stamp.nanosec * 1e-9, 2)] = x
+            tf_pub.publish(TFMessage(transforms=[_transform('odom', 'base_footprint', x,
+                                                            stamp)]))
 
         def on_scan_tick() -> None:
             scan = LaserScan()
@@ -137,5 +142,37 @@ def test_bad_scans_and_a_missing_graph_neither_crash_nor_corrupt(
         assert slam.output.count('NaN ranges') == 1
         assert 'Traceback' not in slam.output
         assert slam.popen.poll() is None
+        if kind == 'async':
+            localize_in_the_saved_graph(launch, probe, slam, tmp_path, x_now, odometry)
     finally:
         probe.close()
+
+
+def localize_in_the_saved_graph(launch, probe: TestNode, slam, tmp_path: Path, x_now,
+                                odometry: dict[float, float]) -> None:
+    """Serialize the box's graph, restart in localization mode at a start pose 11 cm off:
+    /pose is then where the odometry (= the box frame here) says the robot is."""
+    from geometry_msgs.msg import PoseWithCovarianceStamped
+
+    from slam_toolbox.srv import SerializePoseGraph
+    graph = tmp_path / 'box'
+    response = probe.call(SerializePoseGraph, '/slam_toolbox/serialize_map',
+                          SerializePoseGraph.Request(filename=str(graph)))
+    assert response.result == SerializePoseGraph.Response.RESULT_SUCCESS
+    slam.stop()
+    params = tmp_path / 'localization.yaml'
+    params.write_text(PARAMS.replace('minimum_travel_distance: 0.0', 'minimum_travel_distance: 0.1')
+                      + f'    mode: localization\n    map_file_name: {graph}\n'
+                      f'    map_start_pose: [{x_now() + 0.1:.3f}, 0.05, 0.0]\n')
+    poses = probe.collect(PoseWithCovarianceStamped, '/pose', 10)
+    localizing = launch(argv=['ros2', 'launch', 'slam_toolbox', 'online_async_launch.py',
+                              f'slam_params_file:={params}', 'use_sim_time:=false'])
+    localizing.wait_for_output(r'DeserializePoseGraph: read \d+ nodes', timeout=30)
+    probe.spin_until(lambda: len(poses) >= 3, 20, 'three localized poses')
+    last = poses[-1]
+    stamp = round(last.header.stamp.sec + last.header.stamp.nanosec * 1e-9, 2)
+    truth = odometry.get(stamp, min(odometry.items(), key=lambda kv: abs(kv[0] - stamp))[1])
+    p = last.pose.pose.position
+    error = ((p.x - truth) ** 2 + p.y ** 2) ** 0.5
+    print(f'localized {error * 100:.1f} cm from the truth')
+    assert error < 0.04, (p.x, p.y, truth)

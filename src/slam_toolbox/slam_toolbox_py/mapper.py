@@ -295,9 +295,10 @@ class Mapper:
         reference = self._near(prior, p.scan_buffer_maximum_scan_distance)
         if len(hits) < 3 or not reference:
             return None
-        scans = reference + [ScanNode(-1, o, pose, h, np.zeros((0, 2)), np.zeros(2), 0.0)
-                             for pose, h in self._rolling for o in [pose]]
-        result = self._match(scans, hits, prior, p.local_window())
+        # the graph's nodes there and the last localized scans (upstream's rolling buffer)
+        recent = [ScanNode(-1, pose, pose, scan, np.zeros((0, 2)), np.zeros(2), 0.0)
+                  for pose, scan in self._rolling]
+        result = self._match(reference + recent, hits, prior, p.local_window())
         pose = result.pose if result.response >= p.link_match_minimum_response_fine else prior
         self._localized = (odom.copy(), pose.copy())
         self._start_pose = None

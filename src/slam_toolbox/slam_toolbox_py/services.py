@@ -104,6 +104,7 @@ class ServicesMixin:
         with self.lock:
             if self.mapper is not None:
                 self.mapper.reset()
+                self.map_to_odom = None
                 self.graph_generation += 1
         if request.pause_new_measurements:
             self.set_parameters([Parameter('paused_new_measurements', value=True)])
@@ -143,6 +144,7 @@ class ServicesMixin:
         with self.lock:
             if self.mapper is not None and len(self.mapper.nodes) > 1:
                 self.mapper.optimize()
+                self.map_to_odom = self.mapper.map_to_odom()
         self.get_logger().info('LoopClosureAssistant: No nodes moved by hand: the graph was '
                                're-optimised as it is.')
         self.map_wake.set()

@@ -61,6 +61,7 @@ class SlamToolbox(ServicesMixin, RclcppLifecycleTransitions, Node):
         self.graph_generation = 0  # bumped when the graph is replaced: the map is redone
         self.localization = False
         self.scan_header = None
+        self.map_to_odom: np.ndarray | None = None  # the worker's latest, for the TF timer
         self.last_map: OccupancyGrid | None = None
         self.lasers: dict[str, np.ndarray] = {}
         self.dropped = 0
@@ -294,6 +295,7 @@ class SlamToolbox(ServicesMixin, RclcppLifecycleTransitions, Node):
                 node = mapper.process(odom, hits, misses, laser[:2], stamp)
                 pose = None if node is None else node.pose
                 cov = None if node is None else node.covariance
+            self.map_to_odom = mapper.map_to_odom()
         if pose is not None:
             self.publish_pose(pose, cov, msg.header.stamp)
             if not self.localization and len(mapper.nodes) == 1:
@@ -311,12 +313,9 @@ class SlamToolbox(ServicesMixin, RclcppLifecycleTransitions, Node):
         self.pose_pub.publish(msg)
 
     def publish_transform(self) -> None:
-        header, mapper = self.scan_header, self.mapper
-        if header is None or mapper is None or not header.frame_id:
-            return
-        with self.lock:
-            map_to_odom = mapper.map_to_odom()
-        if map_to_odom is None:
+        # no lock: the worker may hold it for a whole match, map -> odom must keep going
+        header, map_to_odom = self.scan_header, self.map_to_odom
+        if header is None or map_to_odom is None or not header.frame_id:
             return
         stamp = Time.from_msg(header.stamp) + Duration(seconds=self.values['transform_timeout'])
         if stamp.nanoseconds <= 0:
@@ -419,6 +418,7 @@ class SlamToolbox(ServicesMixin, RclcppLifecycleTransitions, Node):
         fresh.start_at(None if request.match_type == kinds.START_AT_FIRST_NODE else given)
         with self.lock:
             self.mapper = fresh
+            self.map_to_odom = None
             self.localization = request.match_type == kinds.LOCALIZE_AT_POSE
             self.graph_generation += 1
         self.get_logger().info(f'DeserializePoseGraph: read {len(fresh.nodes)} nodes and '
