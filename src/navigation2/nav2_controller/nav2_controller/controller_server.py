@@ -341,10 +341,13 @@ class ControllerServer(LifecycleNode):
                 self.get_logger().info('Waiting for the controller to finish cancellation',
                                        throttle_duration_sec=1.0)
             self._wait_for_costmap()
-            if self._is_goal_reached():
+            # one robot pose and one plan transform per cycle (TF lookups cost in Python)
+            pose = self.costmap_ros.get_robot_pose()
+            to_costmap = self._plan_to_costmap()
+            if self._is_goal_reached(pose, to_costmap):
                 self.get_logger().info('Reached the goal!')
                 return 'succeeded'
-            self._compute_and_publish_velocity(handle)
+            self._compute_and_publish_velocity(handle, pose, to_costmap)
             next_tick += period
             delay = next_tick - time.monotonic()
             if delay > 0:
@@ -362,12 +365,6 @@ class ControllerServer(LifecycleNode):
                 raise exceptions.ControllerTimedOut('Costmap timed out waiting for update')
             time.sleep(0.01)
 
-    def _robot_pose(self) -> Pose2D:
-        pose = self.costmap_ros.get_robot_pose()
-        if pose is None:
-            raise exceptions.ControllerTFError('Failed to obtain robot pose')
-        return pose
-
     def _plan_to_costmap(self) -> Pose2D:
         """The plan frame's origin in the local costmap's global frame, from the latest TF."""
         target = self.costmap_ros.global_frame
@@ -383,19 +380,19 @@ class ControllerServer(LifecycleNode):
         tr = t.transform
         return tr.translation.x, tr.translation.y, yaw_of(tr.rotation)
 
-    def _is_goal_reached(self) -> bool:
-        pose = self.costmap_ros.get_robot_pose()
+    def _is_goal_reached(self, pose: Pose2D | None, to_costmap: Pose2D) -> bool:
         if pose is None:
             return False
-        end = compose(self._plan_to_costmap(), self._path[-1:])[0]
+        end = compose(to_costmap, self._path[-1:])[0]
         return self.goal_checkers[self._goal_checker].is_goal_reached(
             pose, tuple(end), self._thresholded_twist())
 
-    def _compute_and_publish_velocity(self, handle: Any) -> None:
-        pose = self._robot_pose()
+    def _compute_and_publish_velocity(self, handle: Any, pose: Pose2D | None,
+                                      to_costmap: Pose2D) -> None:
+        if pose is None:
+            raise exceptions.ControllerTFError('Failed to obtain robot pose')
         if self._progress and not self.progress_checkers[self._progress].check(pose):
             raise exceptions.FailedToMakeProgress('Failed to make progress')
-        to_costmap = self._plan_to_costmap()
         try:
             command = self.controllers[self._controller].compute_velocity_commands(
                 pose, self._thresholded_twist(), self.goal_checkers[self._goal_checker],
