@@ -440,3 +440,27 @@ def test_a_controller_plugin_we_lack_fails_configure_in_one_line(launch, tmp_pat
         'exist. Declared types are nav2_mppi_controller::MPPIController '
         'nav2_regulated_pure_pursuit_controller::RegulatedPurePursuitController')
     assert server.popen.poll() is None  # refused, still up and answering
+
+
+def test_bad_goals_end_with_nav2_error_codes(stack):
+    probe, commands = stack['probe'], stack['commands']
+    path = plan(stack, truth_pose(stack)[0] + 1.0, truth_pose(stack)[1], 0.0)
+    cases = [(FollowPath.Goal(path=path, controller_id='DWB',
+                              goal_checker_id='general_goal_checker'),
+              FollowPath.Result.INVALID_CONTROLLER, 'Failed to find controller name: DWB'),
+             (FollowPath.Goal(controller_id='FollowPath', goal_checker_id='general_goal_checker'),
+              FollowPath.Result.INVALID_PATH, 'Path is empty.'),
+             (FollowPath.Goal(path=path, controller_id='FollowPath'),  # two checkers: name one
+              FollowPath.Result.UNKNOWN, 'Failed to find goal checker name: ')]
+    for goal, code, message in cases:
+        future = stack['follower'].send_goal_async(goal)
+        probe.spin_until(future.done, 10, 'follow_path to accept')
+        result = future.result().get_result_async()
+        probe.spin_until(result.done, 10, 'the goal to end')
+        assert result.result().status == GoalStatus.STATUS_ABORTED
+        assert (result.result().result.error_code, result.result().result.error_msg) == \
+            (code, message)
+    stack['controller'].wait_for_output(
+        'FollowPath called with controller name DWB, which does not exist. Available '
+        'controllers are: FollowPath RPP .')
+    assert commands[-1] == Twist()
