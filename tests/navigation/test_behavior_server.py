@@ -11,6 +11,7 @@ the robot (they are written so that any order of the moves stays clear of the wa
 from __future__ import annotations
 
 import math
+import subprocess
 import sys
 from collections import deque
 from pathlib import Path
@@ -28,8 +29,9 @@ from support import TestNode
 HOST = Path(__file__).with_name('local_costmap_host.py')
 WALL_FACE_X = -7.5  # the west wall's inner face, world frame
 REAR = 0.13  # base_footprint to the back of the robot's body, m
-# Half speed: the behaviours' 10 Hz loop on a loaded machine (load ~13 on 2 cores) was seen
-# 2-3 cycles late, which at full speed overshot a 1 rad/s spin by 0.26 rad (0.03 when idle).
+# Half speed, and spins at up to 0.5 rad/s (Nav2's params: 1.0): at load 13-18 on 2 cores the
+# simulator catches up on lost time in bursts (up to 0.25 s) and the server sees TF late, so
+# a 1 rad/s spin at full speed once stopped 0.86 rad past its goal (0.03 rad when idle).
 REAL_TIME_FACTOR = 0.5
 PARAMS = """\
 behavior_server:
@@ -57,7 +59,7 @@ behavior_server:
     robot_base_frame: base_link
     transform_tolerance: 0.1
     simulate_ahead_time: 2.0
-    max_rotational_vel: 1.0
+    max_rotational_vel: 0.5
     min_rotational_vel: 0.4
     rotational_acc_lim: 3.2
 local_costmap:
@@ -109,6 +111,9 @@ class Robot:
         self.truth: deque[Odometry] = deque(maxlen=2000)
         probe.node.create_subscription(Odometry, '/ground_truth/odom',
                                        lambda msg: self.truth.append(msg), 50)
+        self.odom: deque[Odometry] = deque(maxlen=200)
+        probe.node.create_subscription(Odometry, '/odom', lambda msg: self.odom.append(msg),
+                                       50)
         self.clients: dict[str, ActionClient] = {}
 
     def latest(self) -> Odometry:
@@ -116,15 +121,17 @@ class Robot:
         return self.truth[-1]
 
     def settled(self) -> Odometry:
-        """The ground truth once the robot stands still (0.3 s of sim time after a stop)."""
-        def still() -> bool:
-            last = self.truth[-1]
-            recent = [m for m in self.truth
-                      if seconds(m.header.stamp) > seconds(last.header.stamp) - 0.3]
-            return seconds(last.header.stamp) - seconds(self.truth[0].header.stamp) > 0.3 \
-                and all(abs(m.twist.twist.linear.x) < 0.01 and abs(m.twist.twist.angular.z)
-                        < 0.02 for m in recent)
+        """The ground truth once the robot stands still: 0.3 s of sim time without motion,
+        all of it received after this call (the probe hears nothing while it does not spin)."""
         self.latest()
+        called = seconds(self.truth[-1].header.stamp)
+
+        def still() -> bool:
+            last = seconds(self.truth[-1].header.stamp)
+            recent = [m for m in self.truth if seconds(m.header.stamp) > last - 0.3]
+            return last - called > 0.3 and all(
+                abs(m.twist.twist.linear.x) < 0.01 and abs(m.twist.twist.angular.z) < 0.02
+                for m in recent)
         try:
             self.probe.spin_until(still, 10.0, 'the robot to stand still')
         except AssertionError:
@@ -205,17 +212,17 @@ def test_backup_toward_a_wall_stops_short_with_collision_ahead(stack):
 def test_drive_on_heading_drives_the_distance(stack):
     _server, robot = stack
     start = robot.settled()
-    goal = DriveOnHeading.Goal(target=Point(x=0.5), speed=0.2)
+    goal = DriveOnHeading.Goal(target=Point(x=0.4), speed=0.1)
     goal.time_allowance.sec = 15
     status, result, feedback = robot.run(DriveOnHeading, 'drive_on_heading', goal)
     assert status == GoalStatus.STATUS_SUCCEEDED, result.error_code
     end = robot.settled()
     a, b = start.pose.pose.position, end.pose.pose.position
-    assert abs(math.hypot(b.x - a.x, b.y - a.y) - 0.5) < 0.05
+    assert abs(math.hypot(b.x - a.x, b.y - a.y) - 0.4) < 0.05
     assert b.x > a.x  # forward: away from the wall
     distances = [f.distance_traveled for f in feedback]
-    assert len(distances) > 10 and 0.5 <= distances[-1] < 0.55  # one per cycle at 10 Hz
-    assert seconds(result.total_elapsed_time) > 2.0  # 0.5 m at 0.2 m/s
+    assert len(distances) > 10 and 0.4 <= distances[-1] < 0.45  # one per cycle at 10 Hz
+    assert seconds(result.total_elapsed_time) > 3.5  # 0.4 m at 0.1 m/s
 
 
 def test_backup_goes_back_the_distance(stack):
@@ -236,11 +243,14 @@ def test_spin_turns_by_the_target_yaw_both_ways(stack):
     server, robot = stack
     for target in (1.57, -1.57):
         start = robot.settled()
+        odom_start = yaw_of(robot.odom[-1])
         status, result, feedback = robot.run(Spin, 'spin', Spin.Goal(target_yaw=target))
         assert status == GoalStatus.STATUS_SUCCEEDED, result.error_code
         end = robot.settled()
         turned = math.remainder(yaw_of(end) - yaw_of(start), math.tau)
-        print(f'spin {target}: turned {turned:.3f} rad')
+        odom_turned = math.remainder(yaw_of(robot.odom[-1]) - odom_start, math.tau)
+        print(f'spin {target}: turned {turned:.3f} rad, /odom says {odom_turned:.3f}, the '
+              f'server {feedback[-1].angular_distance_traveled:.3f}')
         assert abs(turned - target) < 0.1
         assert abs(feedback[-1].angular_distance_traveled - target) < 0.1
     server.wait_for_output(r'Turning -1\.57 for spin behavior\.')
@@ -248,7 +258,7 @@ def test_spin_turns_by_the_target_yaw_both_ways(stack):
 
 def test_wait_returns_after_the_time(stack):
     _server, robot = stack
-    before = seconds(robot.latest().header.stamp)
+    before = seconds(robot.settled().header.stamp)
     goal = Wait.Goal()
     goal.time.sec = 1
     status, result, feedback = robot.run(Wait, 'wait', goal)
@@ -260,34 +270,44 @@ def test_wait_returns_after_the_time(stack):
     assert left[0] > 0.5 and left[-1] < 0.2 and left == sorted(left, reverse=True)
 
 
+NAVIGATOR_SCRIPT = """\
+import rclpy
+from nav2_simple_commander.robot_navigator import BasicNavigator, TaskResult
+rclpy.init()
+nav = BasicNavigator()
+nav.{task}
+for _ in range(300):  # isTaskComplete waits up to 0.1 s: about 30 s at most
+    if nav.isTaskComplete():
+        break
+print('succeeded', nav.getResult() == TaskResult.SUCCEEDED, flush=True)
+nav.destroyNode()
+rclpy.shutdown()
+"""
+
+
+def run_navigator(task: str, env: dict[str, str], directory: Path) -> str:
+    script = directory / 'navigator.py'
+    script.write_text(NAVIGATOR_SCRIPT.format(task=task))
+    done = subprocess.run([sys.executable, str(script)], env=env, capture_output=True,
+                          text=True, timeout=60)
+    return done.stdout + done.stderr
+
+
 def test_basic_navigator_spin_and_backup(stack, module_ros_env, tmp_path):
-    import subprocess
     server, robot = stack
     start = robot.settled()
-    script = tmp_path / 'navigator.py'
-    script.write_text(
-        'import rclpy\n'
-        'from nav2_simple_commander.robot_navigator import BasicNavigator, TaskResult\n'
-        'rclpy.init()\n'
-        'nav = BasicNavigator()\n'
-        'for task in (lambda: nav.spin(spin_dist=0.8, time_allowance=10),\n'
-        '             lambda: nav.backup(backup_dist=0.1, backup_speed=0.1,\n'
-        '                                time_allowance=10)):\n'
-        '    task()\n'
-        '    for _ in range(300):\n'
-        '        if nav.isTaskComplete():\n'
-        '            break\n'
-        '    print("result", nav.getResult() == TaskResult.SUCCEEDED, flush=True)\n'
-        'nav.destroyNode()\n'
-        'rclpy.shutdown()\n')
-    done = subprocess.run([sys.executable, str(script)], env=module_ros_env,
-                          capture_output=True, text=True, timeout=60)
-    assert done.stdout.splitlines() == ['result True', 'result True'], done.stdout + \
-        done.stderr
-    end = robot.settled()
-    turned = math.remainder(yaw_of(end) - yaw_of(start), math.tau)
+    output = run_navigator('spin(spin_dist=0.8, time_allowance=10)', module_ros_env, tmp_path)
+    assert 'succeeded True' in output, output
+    middle = robot.settled()
+    turned = math.remainder(yaw_of(middle) - yaw_of(start), math.tau)
     assert abs(turned - 0.8) < 0.1
     server.wait_for_output(r'Turning 0\.80 for spin behavior\.')
+    output = run_navigator('backup(backup_dist=0.1, backup_speed=0.1, time_allowance=10)',
+                           module_ros_env, tmp_path)
+    assert 'succeeded True' in output, output
+    end = robot.settled()
+    a, b = middle.pose.pose.position, end.pose.pose.position
+    assert abs(math.hypot(b.x - a.x, b.y - a.y) - 0.1) < 0.05
 
 
 def test_cancel_stops_the_robot_and_ends_canceled(stack):

@@ -18,6 +18,7 @@ from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.executors import MultiThreadedExecutor
 from rclpy.lifecycle import State, TransitionCallbackReturn
 from rclpy.parameter import Parameter
+from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
 from tf2_ros import Buffer, TransformListener
 
 from nav2_behaviors.costmap_topic_collision_checker import (
@@ -30,6 +31,12 @@ from nav2_behaviors.plugins.drive_on_heading import BackUp, DriveOnHeading
 from nav2_behaviors.plugins.spin import Spin
 from nav2_behaviors.plugins.wait import Wait
 from nav2_behaviors.timed_behavior import CostmapInfoType, TimedBehavior
+
+# /tf as upstream's listener takes it, but only the latest few: a listener that falls behind
+# (a loaded machine) drops old transforms instead of working through a 100-deep backlog,
+# which left the pose a behaviour starts from 0.7 s old (a spin then overshot by 0.36 rad).
+TF_QOS = QoSProfile(depth=5, durability=DurabilityPolicy.VOLATILE,
+                    history=HistoryPolicy.KEEP_LAST)
 
 # The plugin types this workspace has, by upstream's class name.
 BEHAVIOR_TYPES: dict[str, type[TimedBehavior]] = {
@@ -87,7 +94,8 @@ class BehaviorServer(LifecycleNode):
             return TransitionCallbackReturn.FAILURE
         self.tf_buffer = Buffer()
         # TF on its own thread: a behaviour's cycle must not wait behind costmap messages
-        self._tf_listener = TransformListener(self.tf_buffer, self, spin_thread=True)
+        self._tf_listener = TransformListener(self.tf_buffer, self, spin_thread=True,
+                                              qos=TF_QOS)
         if not self._load_behavior_plugins():
             self.release()
             return TransitionCallbackReturn.FAILURE
@@ -171,7 +179,7 @@ def main(args: list[str] | None = None) -> int:
         node.stop_event = stop
         # goals wait for their results on executor threads while the behaviours run on
         # threads of their own: room for a goal, a preempting one and cancels per behaviour
-        spin_until_stopped(node, stop, MultiThreadedExecutor(num_threads=8))
+        spin_until_stopped(node, stop, MultiThreadedExecutor(num_threads=6))
     return 0
 
 
