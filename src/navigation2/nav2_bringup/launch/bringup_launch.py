@@ -5,7 +5,7 @@ server of both is a component of one `nav2_container` process."""
 
 import os
 
-from ament_index_python.packages import get_package_share_directory
+from ament_index_python.packages import PackageNotFoundError, get_package_share_directory
 from launch.actions import (
     DeclareLaunchArgument,
     GroupAction,
@@ -27,8 +27,21 @@ def composed(context) -> bool:
     return context.launch_configurations['use_composition'].lower() in ('true', '1')
 
 
-def warn_no_slam(context):
-    launch.logging.get_logger('launch').warning('slam_toolbox is not built here; left out')
+def start_slam(context):
+    """slam_launch.py (slam_toolbox, not composed, as upstream) instead of localization."""
+    try:
+        get_package_share_directory('slam_toolbox')
+    except PackageNotFoundError:
+        launch.logging.get_logger('launch').warning('slam_toolbox is not built here; left out')
+        return []
+    conf = context.launch_configurations
+    slam_launch = os.path.join(get_package_share_directory('nav2_bringup'), 'launch',
+                               'slam_launch.py')
+    return [IncludeLaunchDescription(
+        PythonLaunchDescriptionSource(slam_launch),
+        launch_arguments={name: conf[name] for name in (
+            'namespace', 'use_sim_time', 'autostart', 'use_respawn', 'params_file',
+            'log_level')}.items())]
 
 
 def start_gathering(context):
@@ -83,7 +96,7 @@ def generate_launch_description():
         GroupAction([
             PushROSNamespace(conf['namespace'], condition=IfCondition(conf['use_namespace'])),
             OpaqueFunction(function=start_gathering),
-            OpaqueFunction(function=warn_no_slam, condition=IfCondition(PythonExpression(
+            OpaqueFunction(function=start_slam, condition=IfCondition(PythonExpression(
                 [conf['slam'], ' and ', conf['use_localization']]))),
             IncludeLaunchDescription(
                 PythonLaunchDescriptionSource(os.path.join(launch_dir,
