@@ -34,9 +34,11 @@ class TransformListener:
         self.node = node
         self._stop = threading.Event()
         if spin_thread:
+            # Without the process's arguments, as rclcpp's: launch's `__node:=` rename would
+            # name it like `node` ("Publisher already registered for node name" in its log).
             self.node = rclpy.create_node(
                 f'transform_listener_impl_{id(self):x}', context=node.context,
-                start_parameter_services=False)
+                start_parameter_services=False, use_global_arguments=False)
         # Reentrant, so that a callback of the node may wait for transforms while these
         # subscriptions run on another thread of a multi-threaded executor.
         self.group = ReentrantCallbackGroup()
