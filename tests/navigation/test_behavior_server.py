@@ -19,10 +19,11 @@ from typing import Any
 
 import pytest
 from action_msgs.msg import GoalStatus
-from geometry_msgs.msg import Point
-from nav2_msgs.action import BackUp, DriveOnHeading, Spin, Wait
+from geometry_msgs.msg import Point, Twist
+from nav2_msgs.action import AssistedTeleop, BackUp, DriveOnHeading, Spin, Wait
 from nav_msgs.msg import Odometry
 from rclpy.action import ActionClient
+from std_msgs.msg import Empty
 
 from support import TestNode
 
@@ -379,3 +380,29 @@ def test_without_a_costmap_a_move_ends_with_collision_ahead(stack, module_launch
                                            BackUp.Result.COLLISION_AHEAD)
     lonely.wait_for_output(r'\[ERROR\] .*\[lonely\.behavior_server\]: Costmap is not available')
     assert lonely.output.count('Costmap is not available') == 1
+
+
+def test_assisted_teleop_passes_teleop_on_until_preempted(stack):
+    server, robot = stack
+    start = robot.settled()
+    node = robot.probe.node
+    teleop = node.create_publisher(Twist, '/cmd_vel_teleop', 10)
+    preempt = node.create_publisher(Empty, '/preempt_teleop', 10)
+    turning = Twist()
+    turning.angular.z = 0.4
+    timer = node.create_timer(0.1, lambda: teleop.publish(turning))
+    try:
+        handle, feedback = robot.send(AssistedTeleop, 'assisted_teleop', AssistedTeleop.Goal())
+        robot.probe.spin_until(
+            lambda: abs(math.remainder(yaw_of(robot.truth[-1]) - yaw_of(start), math.tau)) > 0.2,
+            20.0, 'the robot to turn as teleop says')
+    finally:
+        node.destroy_timer(timer)
+    robot.probe.spin_until(lambda: preempt.get_subscription_count() > 0, 10.0,
+                           'behavior_server on /preempt_teleop')
+    preempt.publish(Empty())
+    status, _result = robot.result(handle)
+    assert status == GoalStatus.STATUS_SUCCEEDED
+    assert seconds(feedback[-1].current_teleop_duration) > 0.0
+    robot.settled()  # stopped when the teleop ended
+    server.wait_for_output(r'\[behavior_server\]: assisted_teleop completed successfully')
