@@ -26,8 +26,6 @@ import time
 import rclpy
 from geometry_msgs.msg import PoseStamped
 from nav2_simple_commander.robot_navigator import BasicNavigator
-from rclpy.time import Time
-from tf2_ros import Buffer, TransformListener
 
 
 def pose(navigator, x, y):
@@ -48,14 +46,6 @@ goal = pose(navigator, {x}, {y})
 path = navigator.getPath(start, goal)
 print(f'path of {{len(path.poses)}} poses', flush=True)
 if '--drive' in sys.argv:
-    # amcl's map -> odom is stamped a transform_tolerance ahead: the chain map -> base_link
-    # resolves only once odom -> base_link has caught up with its first stamp
-    buffer = Buffer()
-    listener = TransformListener(buffer, navigator, spin_thread=True)
-    deadline = time.monotonic() + 20.0
-    while not buffer.can_transform('map', 'base_link', Time()) and \
-            time.monotonic() < deadline:
-        time.sleep(0.05)
     navigator.goToPose(goal)
     while not navigator.isTaskComplete():
         time.sleep(0.1)
