@@ -310,8 +310,9 @@ def test_basic_navigator_spin_and_backup(stack, module_ros_env, tmp_path):
     a, b = middle.pose.pose.position, end.pose.pose.position
     heading = yaw_of(middle)
     backwards = -((b.x - a.x) * math.cos(heading) + (b.y - a.y) * math.sin(heading))
-    # BasicNavigator's part is the goal it sends (the backup test checks the 0.05 m): the
-    # caster swinging round as the robot reverses after a spin was seen to add 7 cm
+    # BasicNavigator's part is the goal it sends (the backup test checks the 0.05 m): right
+    # after a spin, at load 15, this 0.1 m once ended 7 cm long (TF lag or the caster
+    # swinging round as the robot reverses: not pinned down)
     assert 0.05 < backwards < 0.2, backwards
 
 
