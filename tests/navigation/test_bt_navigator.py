@@ -356,3 +356,19 @@ def test_a_goal_tree_of_other_nav2_nodes_cancels_the_controller(stack, navigate)
         assert status == GoalStatus.STATUS_CANCELED  # by CancelControl
     finally:
         follow.destroy()
+
+
+def test_a_shipped_tree_by_its_path_drives_the_calibration_square(stack, navigate):
+    from ament_index_python.packages import get_package_share_directory
+
+    _navigator, stand_ins, _probe, _directory = stack
+    tree = Path(get_package_share_directory('nav2_bt_navigator'),
+                'behavior_trees', 'odometry_calibration.xml')
+    drives, spins = (stand_ins.output.count(f'{name} goal') for name in ('drive_on_heading',
+                                                                        'spin'))
+    status, result = navigate(NavigateToPose.Goal(pose=pose(1.0, 1.0),
+                                                  behavior_tree=str(tree))).finish()
+    assert status == GoalStatus.STATUS_SUCCEEDED, result.error_msg
+    wait_until(lambda: stand_ins.output.count('drive_on_heading goal') == drives + 12, 5.0,
+               '12 sides driven')
+    assert stand_ins.output.count('spin goal') == spins + 12  # 3 squares of 4 turns
