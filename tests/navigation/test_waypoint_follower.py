@@ -18,7 +18,9 @@ import pytest
 from action_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
 from nav2_msgs.action import FollowWaypoints
+from rcl_interfaces.srv import SetParameters
 from rclpy.action import ActionClient
+from rclpy.parameter import Parameter
 
 from support import TestNode
 
@@ -202,3 +204,22 @@ def test_photo_at_waypoint_is_not_built(launch):
         r'\[FATAL\] .*Failed to create waypoint_task_executor\. Exception: '
         r'nav2_waypoint_follower::PhotoAtWaypoint is not built in this workspace', timeout=20)
     follower.wait_for_output('Auto-starting node waypoint_follower failed to configure!')
+
+
+def set_parameter(probe: TestNode, name: str, value: Any) -> Any:
+    request = SetParameters.Request(parameters=[Parameter(name, value=value).to_parameter_msg()])
+    return probe.call(SetParameters, '/waypoint_follower/set_parameters', request).results[0]
+
+
+def test_stop_on_failure_and_loop_rate_change_at_run_time(stack):
+    navigator, _follower, _strict, probe, _clients = stack
+    assert set_parameter(probe, 'stop_on_failure', True).successful
+    try:
+        status, result, _seen = follow(stack, [pose(21, 0, FAILS), pose(22, 0)])
+        assert status == GoalStatus.STATUS_ABORTED
+        assert [m.index for m in result.missed_waypoints] == [0]
+        assert '22 0' not in visits(navigator, 10)
+    finally:
+        assert set_parameter(probe, 'stop_on_failure', False).successful
+    refused = set_parameter(probe, 'loop_rate', 0)
+    assert not refused.successful and refused.reason == 'loop_rate must be > 0 Hz, got 0'

@@ -24,6 +24,7 @@ from nav2_msgs.msg import MissedWaypoint
 from nav2_util.lifecycle_node import LifecycleNode
 from nav2_util.parameters import declare_checked, warn_unknown_parameters
 from node_runtime.spinning import ros_session, spin_until_stopped
+from rcl_interfaces.msg import SetParametersResult
 from rclpy.action import ActionClient
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.executors import MultiThreadedExecutor
@@ -62,6 +63,7 @@ class WaypointFollower(LifecycleNode):
         self._goal_token = 0  # which navigate_to_pose goal the callbacks belong to
         self._nav_handle: Any = None
         self._checked_parameters = False
+        self._parameters_handler: Any = None
 
     # --- lifecycle -----------------------------------------------------------------------
     def on_configure(self, state: State) -> TransitionCallbackReturn:
@@ -100,11 +102,32 @@ class WaypointFollower(LifecycleNode):
     def on_activate(self, state: State) -> TransitionCallbackReturn:
         self.get_logger().info('Activating')
         self.server.activate()
+        self._parameters_handler = self.add_on_set_parameters_callback(
+            self._on_set_parameters)
         return super().on_activate(state)
 
     def on_deactivate(self, state: State) -> TransitionCallbackReturn:
         self.server.deactivate()
+        if self._parameters_handler is not None:
+            self.remove_on_set_parameters_callback(self._parameters_handler)
+            self._parameters_handler = None
         return super().on_deactivate(state)
+
+    def _on_set_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
+        """Upstream's dynamic parameters: loop_rate and stop_on_failure, while active."""
+        for parameter in parameters:
+            if parameter.name == 'loop_rate' and parameter.type_ == Parameter.Type.INTEGER:
+                if parameter.value <= 0:
+                    return SetParametersResult(
+                        successful=False,
+                        reason=f'loop_rate must be > 0 Hz, got {parameter.value}')
+        for parameter in parameters:
+            if parameter.name == 'loop_rate' and parameter.type_ == Parameter.Type.INTEGER:
+                self.loop_rate = parameter.value
+            elif parameter.name == 'stop_on_failure' and \
+                    parameter.type_ == Parameter.Type.BOOL:
+                self.stop_on_failure = parameter.value
+        return SetParametersResult(successful=True)
 
     def release(self) -> None:
         if self.server is not None:
