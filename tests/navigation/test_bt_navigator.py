@@ -191,6 +191,10 @@ def test_navigate_to_pose_plans_then_follows_with_feedback(stack, navigate):
     navigator.wait_for_output(r'Begin navigating from current location \(1\.00, 1\.00\) to '
                               r'\(2\.50, 1\.50\)')
     navigator.wait_for_output(r'\[bt_navigator\]: Goal succeeded')
+    # Jazzy's bt_navigator section as it is: every parameter known, no warning
+    assert 'Ignoring unknown parameter' not in navigator.output
+    assert 'Error_code parameters were set to: compute_path_error_code follow_path_error_code' \
+        in navigator.output
     stand_ins.wait_for_output(r"follow_path goal: \d+ poses to \(2\.50, 1\.50\) "
                               r"controller='FollowPath'")
     assert run.feedback, 'no feedback'
