@@ -1,10 +1,10 @@
 """controller_server's control loop next to the simulator: the warehouse world at real-time
 factor 1, map_server, a static map -> odom, planner_server and controller_server (the
-parameters of tests/navigation/test_controller_server_sim.py: MPPI with Nav2's batch_size
-2000 and time_steps 56, and RPP) on sim time. The robot follows planned paths round the
-centre pillar and back, `--laps` times, with each controller. Figures: the period between
-the /cmd_vel commands a subscriber receives while a goal runs (p50 / p99 / max; target 20 Hz,
-p99 <= 75 ms), and controller_server's CPU share.
+parameters of tests/navigation/test_controller_server_sim.py: MPPI with time_steps 56 and
+batch_size 2000 as Nav2's params file has it, and RPP) on sim time. The robot follows
+planned paths round the centre pillar and back, `--laps` times, with the chosen controller.
+Figures: the period between the /cmd_vel commands a subscriber receives while a goal runs
+(p50 / p99 / max; target 20 Hz, p99 <= 75 ms), and controller_server's CPU share.
 
 `python bench/controller_loop.py [--laps N] [--controller FollowPath|RPP] [--set NAME=VALUE]`
 (--set changes a FollowPath parameter, e.g. --set batch_size=1000).
@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import re
 import sys
 import time
 from itertools import pairwise
@@ -40,10 +41,10 @@ def drive(current: Session, laps: int, controller: str, extra: dict[str, str]) -
     world_map = Path(get_package_share_directory('mujoco_sim')) / 'maps' / 'warehouse.yaml'
     text = PARAMS.format(map=world_map)
     for name, value in extra.items():  # FollowPath's own parameters sit 6 spaces in
+        text = re.sub(rf'\n      {name}: .*\n', '\n', text, count=1)
         text = text.replace('      plugin: "nav2_mppi_controller::MPPIController"\n',
                             '      plugin: "nav2_mppi_controller::MPPIController"\n'
                             f'      {name}: {value}\n', 1)
-        text = text.replace(f'      {name}: 2000\n', '', 1) if name == 'batch_size' else text
     params = current.log_dir / 'nav2_params.yaml'
     params.write_text(text)
     current.start_argv(['ros2', 'launch', 'diffbot_bringup', 'diffbot_sim.launch.py',
@@ -125,7 +126,7 @@ def main() -> None:
     parser.add_argument('--controller', default='FollowPath', choices=('FollowPath', 'RPP'))
     parser.add_argument('--set', action='append', default=[], metavar='NAME=VALUE')
     options = parser.parse_args()
-    extra = dict(item.split('=', 1) for item in options.set)
+    extra = {'batch_size': '2000', **dict(item.split('=', 1) for item in options.set)}
     with session('controller_loop') as current:
         rows, _ = run(current, options.laps, options.controller, extra)
     for row in rows:

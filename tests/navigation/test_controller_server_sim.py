@@ -98,7 +98,7 @@ controller_server:
       plugin: "nav2_mppi_controller::MPPIController"
       time_steps: 56
       model_dt: 0.05
-      batch_size: 2000
+      batch_size: 1000  # upstream's default; Nav2's params file: 2000 (bench/controller_loop.py)
       vx_std: 0.2
       wz_std: 0.4
       vx_max: 0.5
