@@ -11,7 +11,7 @@ from nav2_msgs.srv import ManageLifecycleNodes
 from rcl_interfaces.srv import GetParameters
 from std_srvs.srv import Trigger
 
-from support import executable
+from ws_testing import executable
 
 MANAGED = ('map_server', 'map_saver')
 

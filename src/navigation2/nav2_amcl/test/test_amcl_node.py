@@ -19,7 +19,7 @@ from std_srvs.srv import Empty
 from test_amcl_filter import RANGE_MAX, RESOLUTION, SCAN_BEAMS, _grid, _scan
 from tf2_msgs.msg import TFMessage
 
-from support import TestNode
+from ws_testing import TestNode
 
 LATCHED = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL,
                      reliability=ReliabilityPolicy.RELIABLE)

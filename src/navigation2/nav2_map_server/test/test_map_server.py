@@ -18,7 +18,7 @@ from nav_msgs.srv import GetMap
 from PIL import Image
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 
-from support import TestNode, executable
+from ws_testing import TestNode, executable
 
 # A 5 x 3 image, top row first: grey levels on both sides of Nav2's default thresholds.
 PIXELS = [[0, 254, 205, 100, 255],
