@@ -1,7 +1,8 @@
 """Fuzz turtlesim, turtle_controller and the ros2 CLI with 10,000 generated cases.
 
-The properties are the tests' own (tests/test_fuzz_*.py); only the number of examples per
-property differs (FUZZ_MAX_EXAMPLES). Prints the cases run per property and what failed.
+The properties are the tests' own (turtlesim's and my_robot_controller's test_fuzz_*.py);
+only the number of examples per property differs (FUZZ_MAX_EXAMPLES). Prints the cases run
+per property and what failed.
 """
 
 from __future__ import annotations
@@ -16,8 +17,8 @@ import time
 from common import REPO, RESULTS
 
 PROPERTIES = {  # test module -> its number of properties (each case: real DDS round trips)
-    'tests/test_fuzz_turtlesim.py': 7,
-    'tests/test_fuzz_controller.py': 1,
+    'src/turtlesim/test/test_fuzz_turtlesim.py': 7,
+    'src/my_robot_controller/test/test_fuzz_controller.py': 1,
 }
 
 

@@ -8,7 +8,9 @@ my_robot_controller's nodes importing more than interfaces and node_runtime, and
 importing another package's `verb` modules (a `ros2` command's verbs are its own: what other
 code may use is the command's `api`) or another package's private (underscore-named) modules.
 Launch files (`*.launch.py`) count for cycles and package.xml, not for the turtlesim and course
-rules: a launch file is run by `ros2 launch`, it is no part of a node.
+rules: a launch file is run by `ros2 launch`, it is no part of a node. A package's tests (its
+`test/` folder) count for package.xml (a `<test_depend>` will do) and for cycles (colcon orders
+packages by their test dependencies too), not for the drawing nor for those two rules.
 
 `python tests/test_layout.py [--mermaid]` prints the dependency table (or the drawing) of
 docs/architecture.md.
@@ -36,7 +38,8 @@ ALLOWED_IN_CODE = {
     'my_robot_controller': {'node_runtime', 'turtlesim', 'example_interfaces'},
 }
 # A package's internals: importable, but by no other package (the simulator's code).
-PRIVATE_MODULES = {'turtlesim_py': 'turtlesim', 'logging_demo_py': 'logging_demo'}
+PRIVATE_MODULES = {'turtlesim_py': 'turtlesim', 'logging_demo_py': 'logging_demo',
+                   'slam_toolbox_py': 'slam_toolbox'}
 
 
 @dataclass
@@ -50,6 +53,8 @@ class Package:
     # workspace module -> where, imported by code that is no launch file
     code_imports: dict[str, str] = field(default_factory=dict)
     modules_imported: dict[str, str] = field(default_factory=dict)  # every workspace module
+    # imported workspace package -> where, by the package's tests (its test/ folder) only
+    test_imports: dict[str, str] = field(default_factory=dict)
 
 
 def find_packages() -> dict[str, Package]:
@@ -189,6 +194,10 @@ def scan() -> dict[str, Package]:
                 if target is None or target == package.name:
                     continue
                 where = f'{path.relative_to(REPO)}:{line}'
+                if package.path / 'test' in path.parents:
+                    package.test_imports.setdefault(target, where)
+                    package.modules_imported.setdefault(module, where)
+                    continue
                 package.imports.setdefault(target, where)
                 package.modules_imported.setdefault(module, where)
                 if not path.name.endswith('.launch.py'):
@@ -196,8 +205,9 @@ def scan() -> dict[str, Package]:
     return packages
 
 
-def cycles(packages: dict[str, Package]) -> list[list[str]]:
-    """Strongly connected components of more than one package (Tarjan)."""
+def cycles(packages: dict[str, Package], tests: bool = False) -> list[list[str]]:
+    """Strongly connected components of more than one package (Tarjan); with `tests`, the
+    tests' imports count as edges too."""
     index: dict[str, int] = {}
     low: dict[str, int] = {}
     stack: list[str] = []
@@ -208,7 +218,10 @@ def cycles(packages: dict[str, Package]) -> list[list[str]]:
         index[name] = low[name] = len(index)
         stack.append(name)
         on_stack.add(name)
-        for target in packages[name].imports:
+        targets = set(packages[name].imports)
+        if tests:
+            targets |= set(packages[name].test_imports)
+        for target in sorted(targets):
             if target not in index:
                 visit(target)
                 low[name] = min(low[name], low[target])
@@ -242,7 +255,7 @@ def table(packages: dict[str, Package]) -> str:
 
 
 def test_no_import_cycle_between_packages():
-    found = cycles(scan())
+    found = cycles(scan(), tests=True)
     assert found == [], f'import cycles between packages: {found}\n{table(scan())}'
 
 
@@ -250,7 +263,7 @@ def test_every_cross_package_import_is_declared_in_package_xml():
     missing = [f'{package.name} imports {target} ({where}) without declaring it in '
                f'{package.path.relative_to(REPO)}/package.xml'
                for package in scan().values()
-               for target, where in sorted(package.imports.items())
+               for target, where in sorted({**package.test_imports, **package.imports}.items())
                if target not in package.declared]
     assert missing == [], '\n'.join(missing)
 
@@ -311,6 +324,7 @@ def test_the_boundary_check_catches_a_verb_import_a_private_import_and_an_undecl
 
 # Ours on purpose: tutorial packages and the course's own; on apt Jazzy they overlay upstream's.
 OVERLAY_ON_PURPOSE = {'turtlesim', 'example_interfaces', 'my_robot_controller', 'node_runtime',
+                      'ws_testing',  # the tests' fixtures: colcon test on apt Jazzy uses them too
                       'turtle_tf2_py', 'urdf_tutorial', 'urdf_tutorial_r2d2',
                       # the MuJoCo simulator: no upstream package of these names
                       'mujoco_sim', 'mujoco_sim_interfaces', 'diffbot_description',

@@ -26,6 +26,7 @@ setup(
         *[('lib/' + tool, ['scripts/' + tool]) for tool in TOOLS],
     ],
     install_requires=['setuptools'],
+    extras_require={'test': ['pytest']},  # colcon test runs test/ with pytest
     zip_safe=False,
     maintainer='Turtlesim Team',
     maintainer_email='team@turtles.example.com',

@@ -12,6 +12,7 @@ setup(
     ],
     # scikit-fmm (pinned in the workspace's requirements.lock) computes the potential field
     install_requires=['setuptools'],
+    extras_require={'test': ['pytest']},  # colcon test runs test/ with pytest
     zip_safe=True,
     maintainer='Turtlesim Team',
     maintainer_email='team@turtles.example.com',

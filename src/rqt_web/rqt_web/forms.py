@@ -28,6 +28,22 @@ def topic_name_problem(name: str) -> str | None:
     return None
 
 
+def check_topic_name(name: str) -> None:
+    """FormError naming `name` and rclpy's reason when it is no valid fully qualified topic
+    name: checked before a publisher is made, since rclpy raises on a bad name."""
+    problem = topic_name_problem(name)
+    if problem is not None:
+        raise FormError(f'invalid topic name {name!r}: {problem}')
+
+
+MAX_TOPIC = 256  # characters of a topic name (or frame id) the RViz page's routes accept
+
+
+def absolute_topic(topic: str) -> bool:
+    """A topic name a subscription or publisher can have (rclpy would raise on any other)."""
+    return len(topic) <= MAX_TOPIC and topic_name_problem(topic) is None
+
+
 def interface_class(name: str, kind: str) -> Any:
     getters = {'msg': utilities.get_message, 'srv': utilities.get_service,
                'action': utilities.get_action}

@@ -1,4 +1,5 @@
 """TransformListener: fills a Buffer from /tf and /tf_static."""
+import atexit
 import threading
 
 import rclpy
@@ -34,9 +35,11 @@ class TransformListener:
         self.node = node
         self._stop = threading.Event()
         if spin_thread:
+            # Without the process's arguments, as rclcpp's: launch's `__node:=` rename would
+            # name it like `node` ("Publisher already registered for node name" in its log).
             self.node = rclpy.create_node(
                 f'transform_listener_impl_{id(self):x}', context=node.context,
-                start_parameter_services=False)
+                start_parameter_services=False, use_global_arguments=False)
         # Reentrant, so that a callback of the node may wait for transforms while these
         # subscriptions run on another thread of a multi-threaded executor.
         self.group = ReentrantCallbackGroup()
@@ -53,7 +56,12 @@ class TransformListener:
             self.dedicated_listener_thread = threading.Thread(
                 target=self._spin, daemon=True, name='tf2_listener')
             self.dedicated_listener_thread.start()
-            node.context.on_shutdown(self._stop_spinning)
+            # Only the flag at shutdown: rclpy runs shutdown callbacks holding the context's
+            # lock, which the thread needs to finish, so a join there waited its whole 2 s
+            # (10 s for a process with five listeners). The join comes at exit instead, before
+            # the interpreter finalizes with the thread still in rclpy's C++ (std::terminate).
+            node.context.on_shutdown(self._stop.set)
+            atexit.register(self._stop_spinning)
 
     def _spin(self) -> None:
         """Spin in short slices, so that shutdown finds no rclpy call in progress."""

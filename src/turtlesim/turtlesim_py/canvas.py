@@ -43,7 +43,7 @@ class Canvas:
         Segments are queued and drawn by flush() (the tick calls it once, and every reader
         of pixels first): a run of segments with the same pen is one drawLines call, which
         draws the same pixels as one drawLine per segment in the same order (checked by
-        tests/test_turtlesim_sim.py), at about half the cost per segment.
+        src/turtlesim/test/test_turtlesim_sim.py), at about half the cost per segment.
         """
         m = PIXELS_PER_METER
         self._pending.append(((*rgb, width), QLineF(x0 * m, y0 * m, x1 * m, y1 * m)))

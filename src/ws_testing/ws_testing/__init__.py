@@ -12,9 +12,10 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from ws_testing.support import *  # noqa: F403
+    from ws_testing.workspace import *  # noqa: F403
 
 # The submodules whose public names this package hands out, looked up in this order.
-_MODULES = ('ws_testing.support',)
+_MODULES = ('ws_testing.support', 'ws_testing.workspace')
 
 
 def __getattr__(name: str) -> Any:

@@ -14,11 +14,13 @@ import subprocess
 import time
 import urllib.error
 import urllib.request
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ws_testing.support import REPO
+from ws_testing.support import REPO, Background
 
 CHROMIUM = '/usr/bin/chromium'
 CHROMIUM_ARGS = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
@@ -118,3 +120,30 @@ def copy_screenshots(target: Path) -> None:
     target.mkdir(parents=True, exist_ok=True)
     for path in SCREENSHOTS.glob('*.png'):
         shutil.copy(path, target / path.name)
+
+
+# The RViz page's window in the tests (its screenshots' size).
+VIEWPORT = {'width': 1280, 'height': 1000}
+
+
+@contextmanager
+def rviz_page(ros_env: dict[str, str], probe: Any, config: Path, tmp_path: Path,
+              before_browser: Callable[[Any], None] | None = None) -> Iterator[tuple[Any, Any]]:
+    """(rqt's server, its RViz page on `config` in headless Chromium), while a Background
+    thread spins `probe`; `before_browser(server)` runs before the browser starts. All stopped
+    afterwards."""
+    from playwright.sync_api import sync_playwright
+    server, _ = start_rqt(ros_env, tmp_path / 'state')
+    try:
+        with sync_playwright() as playwright, Background(probe):
+            if before_browser is not None:
+                before_browser(server)
+            browser = launch_browser(playwright)
+            try:
+                page = browser.new_page(viewport=VIEWPORT)
+                page.goto(server.page_url('/rviz', config=str(config)))
+                yield server, page
+            finally:
+                browser.close()
+    finally:
+        server.stop()

@@ -222,6 +222,7 @@ class ObstacleLayer(CostmapLayer):
             self.update_with_max_without_unknown_overwrite(master)
         else:
             self.update_with_max(master)
+        self.current = True  # current again after a reset once it is layered in
 
     def reset(self) -> None:
         super().reset()

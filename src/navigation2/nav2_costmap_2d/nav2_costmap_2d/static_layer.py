@@ -107,8 +107,9 @@ class StaticLayer(CostmapLayer):
                 self.update_with_max(master)
             else:
                 self.update_with_true_overwrite(master)
-            return
-        self._update_rolling(master)
+        else:
+            self._update_rolling(master)
+        self.current = True  # upstream: written again after a reset (clear_entirely)
 
     def _update_rolling(self, master: Costmap2D) -> None:
         """Each master cell takes the map cell under its centre (same frame: no transform)."""

@@ -21,14 +21,12 @@ from nav2_msgs.action import ComputePathThroughPoses, ComputePathToPose
 from nav2_navfn_planner import exceptions
 from nav2_navfn_planner.messages import path_msg, pose_from_msg
 from nav2_navfn_planner.navfn_planner import NavfnPlanner
-from nav2_util.lifecycle_node import LifecycleNode
+from nav2_util.lifecycle_node import LifecycleNode, run_server
 from nav2_util.parameters import declare_checked, warn_unknown_parameters
 from nav_msgs.msg import Path
-from node_runtime.spinning import ros_session, spin_until_stopped
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.duration import Duration
-from rclpy.executors import MultiThreadedExecutor
 from rclpy.lifecycle import State, TransitionCallbackReturn
 from rclpy.time import Time
 from tf2_ros import TransformException
@@ -295,14 +293,7 @@ class PlannerServer(LifecycleNode):
 
 
 def main(args: list[str] | None = None) -> int:
-    with ros_session(args) as stop:
-        node = PlannerServer()
-        node.stop_event = stop
-        # both nodes in one multi-threaded executor: a goal waits for the costmap's updates
-        executor = MultiThreadedExecutor(num_threads=4)
-        executor.add_node(node.costmap_ros)
-        spin_until_stopped(node, stop, executor)
-    return 0
+    return run_server(PlannerServer, args, companions=lambda node: [node.costmap_ros])
 
 
 if __name__ == '__main__':

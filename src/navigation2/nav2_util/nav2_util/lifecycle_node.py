@@ -20,6 +20,7 @@ from typing import Any
 from lifecycle_msgs.msg import State as StateMsg
 from node_runtime.rclcpp_parity import RclcppLifecycleTransitions
 from node_runtime.spinning import ros_session, spin_until_stopped
+from rclpy.executors import MultiThreadedExecutor
 from rclpy.lifecycle import Node, State, TransitionCallbackReturn
 
 from nav2_util.parameters import declare_checked
@@ -104,10 +105,20 @@ class LifecycleNode(RclcppLifecycleTransitions, Node):
         super().destroy_node()
 
 
-def run_server(make: Callable[[], LifecycleNode], args: list[str] | None = None) -> int:
-    """A Nav2 server's main(): the node spins until Ctrl-C or SIGTERM, then stops cleanly."""
+def run_server(make: Callable[[], LifecycleNode], args: list[str] | None = None, *,
+               companions: Callable[[LifecycleNode], list[Any]] | None = None) -> int:
+    """A Nav2 server's main(): the node spins until Ctrl-C or SIGTERM, then stops cleanly.
+
+    `companions(node)` names nodes the server owns that must spin beside it (a server's
+    Costmap2DROS): then all spin in one multi-threaded executor, so a goal callback can wait
+    for the costmap's updates."""
     with ros_session(args) as stop:
         node = make()
         node.stop_event = stop
-        spin_until_stopped(node, stop)
+        executor = None
+        if companions is not None:
+            executor = MultiThreadedExecutor(num_threads=4)
+            for companion in companions(node):
+                executor.add_node(companion)
+        spin_until_stopped(node, stop, executor)
     return 0

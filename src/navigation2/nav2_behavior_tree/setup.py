@@ -1,0 +1,21 @@
+from setuptools import find_packages, setup
+
+package_name = 'nav2_behavior_tree'
+
+setup(
+    name=package_name,
+    version='1.3.13',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+    ],
+    install_requires=['setuptools'],
+    extras_require={'test': ['pytest']},  # colcon test runs test/ with pytest
+    zip_safe=True,
+    maintainer='Turtlesim Team',
+    maintainer_email='team@turtles.example.com',
+    description="Nav2's behavior tree nodes and a BehaviorTree.CPP v4 XML reader and tick "
+                'engine in Python.',
+    license='Apache-2.0',
+)

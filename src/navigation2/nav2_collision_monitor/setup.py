@@ -1,0 +1,24 @@
+from setuptools import find_packages, setup
+
+package_name = 'nav2_collision_monitor'
+
+setup(
+    name=package_name,
+    version='1.3.13',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+    ],
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='Turtlesim Team',
+    maintainer_email='team@turtles.example.com',
+    description="Nav2's collision_monitor in Python: stop, slow down, limit or approach.",
+    license='Apache-2.0',
+    entry_points={
+        'console_scripts': [
+            'collision_monitor = nav2_collision_monitor.collision_monitor:main',
+        ],
+    },
+)

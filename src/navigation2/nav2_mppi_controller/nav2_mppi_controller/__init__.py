@@ -1,0 +1,1 @@
+"""Nav2 MPPI controller (Python stand-in, numpy)."""

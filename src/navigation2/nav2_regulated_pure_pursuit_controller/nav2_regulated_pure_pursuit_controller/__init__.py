@@ -1,0 +1,1 @@
+"""Nav2 Regulated Pure Pursuit controller (Python stand-in)."""

@@ -1,0 +1,24 @@
+from setuptools import find_packages, setup
+
+package_name = 'nav2_smoother'
+
+setup(
+    name=package_name,
+    version='1.3.13',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+    ],
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='Turtlesim Team',
+    maintainer_email='team@turtles.example.com',
+    description="Nav2's smoother_server in Python with the SimpleSmoother plugin.",
+    license='Apache-2.0',
+    entry_points={
+        'console_scripts': [
+            'smoother_server = nav2_smoother.smoother_server:main',
+        ],
+    },
+)

@@ -1,0 +1,24 @@
+from setuptools import find_packages, setup
+
+package_name = 'nav2_velocity_smoother'
+
+setup(
+    name=package_name,
+    version='1.3.13',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+    ],
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='Turtlesim Team',
+    maintainer_email='team@turtles.example.com',
+    description="Nav2's velocity_smoother in Python: cmd_vel limited in velocity and acceleration.",
+    license='Apache-2.0',
+    entry_points={
+        'console_scripts': [
+            'velocity_smoother = nav2_velocity_smoother.velocity_smoother:main',
+        ],
+    },
+)
