@@ -14,17 +14,20 @@ TF comes from `tf_feed` (one tf2_ros Buffer for the whole app); .rviz files and 
 - POST /api/rviz/tool {tool: initialpose|goal|point, topic, frame, x, y, z, yaw}: what the
   tool belt's 2D Pose Estimate, 2D Goal Pose and Publish Point publish, stamped now.
 
-`add_routes` registers these and the routes of `rviz_files` and `rviz_streams`.
+`add_routes` registers these and the routes of `rviz_files`, `rviz_streams` and
+`rviz_nav2`.
 """
 
 from __future__ import annotations
 
+import array
 import math
 import time
 from typing import Any
 
 from aiohttp import web
 
+from rqt_web import rviz_nav2
 from rqt_web.forms import MAX_TOPIC, absolute_topic, interface_class, message_to_ordered_value
 from rqt_web.rviz_files import config_route, resource_route
 from rqt_web.rviz_streams import stream_route
@@ -146,7 +149,19 @@ async def latest_route(request: web.Request) -> web.Response:
         await app['bridge'].subscribe(topic, kind, received)
     msg = latest[(topic, kind)]
     return web.json_response({'topic': topic, 'msg': None if msg is None
-                              else message_to_ordered_value(msg)})
+                              else _finite(message_to_ordered_value(msg))})
+
+
+def _finite(value: Any) -> Any:
+    """NaN and +-inf as null: JSON has no such numbers (a LaserScan's out-of-range readings
+    are inf, and the page's JSON.parse refused the whole answer)."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple, array.array)):
+        return [_finite(v) for v in value]
+    return value
 
 
 # ------------------------------------------------------------------ tool belt
@@ -211,3 +226,4 @@ def add_routes(app: web.Application) -> None:
         web.get('/api/rviz/resource', resource_route),
         web.get('/api/rviz/{kind:cloud|image|map}', stream_route),
         web.post('/api/rviz/tool', tool_route)])
+    rviz_nav2.add_routes(app)  # ParticleCloud, Nav2 Goal, the Navigation 2 panel

@@ -6,7 +6,8 @@ JSON it needs to draw them; ValueError names what in the message cannot be drawn
 - encode_cloud: sensor_msgs/PointCloud2 -> the finite points as float32 x, y, z, then, if
   coloured, uint8 r, g, b per point (rviz's RGB8 or Intensity colour transformer).
 - encode_image: sensor_msgs/Image -> RGBA bytes (16-bit and float scaled min to max).
-- encode_map: nav_msgs/OccupancyGrid -> RGBA bytes in rviz's "map" colour scheme.
+- encode_map: nav_msgs/OccupancyGrid -> RGBA bytes in rviz's "map", "costmap" or "raw" colour
+  scheme.
 """
 
 from __future__ import annotations
@@ -152,15 +153,41 @@ def _map_palette() -> Any:
     return palette
 
 
-def encode_map(msg: Any) -> tuple[bytes, dict]:
-    """nav_msgs/OccupancyGrid -> RGBA bytes, row 0 at the origin, in rviz's "map" colours;
-    the meta gives the size, resolution and the origin's pose in the map's frame."""
+def _costmap_palette() -> Any:
+    """rviz's "costmap" colour scheme: 0 (free) fully transparent, 1-98 blue to red, 99
+    (inscribed) cyan, 100 (lethal) purple, 101-127 green and 128-254 red to yellow (not
+    costs), 255 (-1, unknown) grey-green as in "map"."""
+    import numpy as np
+    palette = _map_palette()
+    palette[0] = (0, 0, 0, 0)
+    ramp = (np.arange(1, 99) * 255) // 100
+    palette[1:99, 0], palette[1:99, 1], palette[1:99, 2] = ramp, 0, 255 - ramp
+    palette[99] = (0, 255, 255, 255)
+    palette[100] = (255, 0, 255, 255)
+    return palette
+
+
+def _raw_palette() -> Any:
+    """rviz's "raw" colour scheme: the cell's byte as a grey level, opaque."""
+    import numpy as np
+    palette = np.full((256, 4), 255, dtype=np.uint8)
+    palette[:, :3] = np.arange(256, dtype=np.uint8)[:, None]
+    return palette
+
+
+MAP_SCHEMES = {'map': _map_palette, 'costmap': _costmap_palette, 'raw': _raw_palette}
+
+
+def encode_map(msg: Any, scheme: str = 'map') -> tuple[bytes, dict]:
+    """nav_msgs/OccupancyGrid -> RGBA bytes, row 0 at the origin, in one of rviz's colour
+    schemes (MAP_SCHEMES); the meta gives the size, resolution and the origin's pose in the
+    map's frame."""
     import numpy as np
     width, height = msg.info.width, msg.info.height
     cells = np.asarray(msg.data, dtype=np.int8).view(np.uint8)
     if cells.size != width * height:
         raise ValueError(f'data holds {cells.size} cells, width * height is {width * height}')
     p, q = msg.info.origin.position, msg.info.origin.orientation
-    return _map_palette()[cells].tobytes(), {
+    return MAP_SCHEMES[scheme]()[cells].tobytes(), {
         'width': width, 'height': height, 'resolution': msg.info.resolution,
         'position': [p.x, p.y, p.z], 'orientation': [q.x, q.y, q.z, q.w]}

@@ -1,23 +1,25 @@
 """The RViz page's long-polled binary streams: PointCloud2, Image and Map displays.
 
 GET /api/rviz/cloud?topic=T&after=N, /api/rviz/image?topic=T&after=N and
-/api/rviz/map?topic=T&after=N (a map transient local; &reliability=Best Effort as the
-display's Topic QoS, else reliable): the latest message newer than the page's N, waited for
-up to STREAM_WAIT (204 No Content if none came), as the binary `rviz_encoding` makes, once
-per message however many pages ask. The `X-Rviz` header gives JSON: seq, frame, points or
-width/height (a map: resolution, origin), colour.
+/api/rviz/map?topic=T&after=N (a map transient local, &scheme=map|costmap|raw its Color
+Scheme; &reliability=Best Effort as the display's Topic QoS, else reliable): the latest
+message newer than the page's N, waited for up to STREAM_WAIT (204 No Content if none
+came), as the binary `rviz_encoding` makes, once per message however many pages ask. The
+`X-Rviz` header gives JSON: seq, frame, points or width/height (a map: resolution, origin),
+colour.
 """
 
 from __future__ import annotations
 
 import asyncio
+import functools
 import json
 from typing import Any
 
 from aiohttp import web
 
 from rqt_web.forms import absolute_topic
-from rqt_web.rviz_encoding import encode_cloud, encode_image, encode_map
+from rqt_web.rviz_encoding import MAP_SCHEMES, encode_cloud, encode_image, encode_map
 
 STREAM_WAIT = 1.0  # seconds a page's request waits for a newer message
 
@@ -51,14 +53,21 @@ async def stream_route(request: web.Request) -> web.StreamResponse:
         after = int(request.query.get('after', '0'))
     except ValueError:
         raise web.HTTPBadRequest(text='after must be an integer\n') from None
+    scheme = request.query.get('scheme', 'map')
+    if scheme not in MAP_SCHEMES:
+        raise web.HTTPBadRequest(text=f'scheme must be one of {", ".join(MAP_SCHEMES)}, '
+                                 f'got {scheme!r}\n')
     reliable = request.query.get('reliability', 'Reliable') != 'Best Effort'
     msg_type, encode = STREAMS[kind]
+    if kind == 'map':
+        encode = functools.partial(encode_map, scheme=scheme)
     app = request.app
     streams = app.setdefault('rviz_streams', {})
-    stream = streams.get((kind, topic, reliable))
+    key = (kind, topic, reliable, scheme if kind == 'map' else '')
+    stream = streams.get(key)
     if stream is None:
         from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
-        stream = streams[(kind, topic, reliable)] = Stream()
+        stream = streams[key] = Stream()
         # rviz2's display QoS: keep last 5, Reliable unless the display's Topic says Best
         # Effort (a best-effort subscription drops a large cloud when one fragment is lost:
         # 2 of 10 clouds/s arrived here; a best-effort publisher needs it, as in rviz2).

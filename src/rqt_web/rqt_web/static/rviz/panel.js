@@ -9,8 +9,9 @@ const list = rqt.el('ul', {id: 'rviz-displays'});
 export const note = rqt.el('span', {id: 'rviz-note', class: 'keys'});
 export const view = rqt.el('div', {id: 'rviz-view', style: 'width:100%;height:560px;position:relative'});
 // The tool belt: rviz2's default tools (Interact moves the camera).
+// Nav2 Goal (nav2_rviz_plugins/GoalTool) shows only with a config that names it.
 export const TOOL_NAMES = {interact: 'Interact', initialpose: '2D Pose Estimate', goal: '2D Goal Pose',
-  point: 'Publish Point'};
+  nav2goal: 'Nav2 Goal', point: 'Publish Point'};
 export const toolButtons = Object.entries(TOOL_NAMES).map(([key, text]) =>
   rqt.el('button', {id: `rviz-tool-${key}`, 'data-tool': key, text, class: key === 'interact' ? 'active' : ''}));
 export const imagePanel = rqt.el('div', {id: 'rviz-images', class: 'row'});

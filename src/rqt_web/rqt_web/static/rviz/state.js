@@ -5,7 +5,7 @@ export const params = new URLSearchParams(location.search);
 
 export const state = {fixedFrame: params.get('fixed_frame') || 'map', background: [48, 48, 48],
   displays: [], frames: {}, status: {}, links: [], ready: false, renders: 0, config: null,
-  clouds: {}, images: {}, maps: {}, markers: [], meshes: [], tool: 'interact', published: []};
+  clouds: {}, images: {}, maps: {}, particles: {}, nav2: null, markers: [], meshes: [], tool: 'interact', published: []};
 window.rviz = state;
 
 // The enabled displays of a class (by its last part: '/Grid' matches rviz_default_plugins/Grid).

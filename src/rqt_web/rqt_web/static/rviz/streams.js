@@ -45,8 +45,12 @@ export const streamLoop = (kind, d, draw, info) => {
     }
   };
   worker.postMessage({url: new URL(`/api/rviz/${kind}?topic=${encodeURIComponent(d.topic || '')}`
-    + `&reliability=${encodeURIComponent(d.reliability || 'Reliable')}`, location.href).href});
+    + `&reliability=${encodeURIComponent(d.reliability || 'Reliable')}`
+    + (kind === 'map' ? `&scheme=${encodeURIComponent(mapScheme(d))}` : ''), location.href).href});
 };
+
+// A Map display's Color Scheme (map, costmap or raw; rviz's default: map).
+export const mapScheme = (d) => String(d.settings?.['Color Scheme'] || 'map');
 
 // At each animation frame: every stream's newest message since the last frame.
 export const drawStreams = () => {

@@ -30,6 +30,11 @@ export function createBelt(ctx, tools) {
     return raycaster.ray.intersectPlane(ground, new THREE.Vector3());
   };
   const publish = async (tool, at, yaw) => {
+    if (tool === 'nav2goal') {
+      // Nav2 Goal sends a navigate_to_pose goal (the Navigation 2 panel shows how it goes).
+      await ctx.sendNav2Goal?.(at, yaw);
+      return;
+    }
     const body = {tool, frame: state.fixedFrame, x: at.x, y: at.y, z: at.z, yaw, topic: toolTopic(tool)};
     try {
       const answer = await rqt.post('/api/rviz/tool', body);

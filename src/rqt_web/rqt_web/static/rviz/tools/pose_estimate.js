@@ -1,4 +1,4 @@
-// 2D Pose Estimate and 2D Goal Pose: press on the ground plane for the position, drag for the
+// 2D Pose Estimate, 2D Goal Pose and Nav2 Goal: press on the ground plane for the position, drag for the
 // orientation (a green arrow shows it), release to publish; then back to Interact, as rviz2.
 import * as THREE from 'three';
 
@@ -31,5 +31,5 @@ export function create({scene}, {canvas, groundPoint, publish, setTool}) {
     toolArrow.visible = false;
     setTool('interact');
   });
-  return {initialpose: press, goal: press};
+  return {initialpose: press, goal: press, nav2goal: press};
 }
