@@ -8,7 +8,7 @@ import time
 
 import pytest
 
-from support import cli_test_node_argv, ros2
+from ws_testing import check, cli_test_node_argv, ros2
 
 PARAM_SERVICES = [
     ('/cli_test_node/describe_parameters', 'rcl_interfaces/srv/DescribeParameters'),
@@ -42,9 +42,6 @@ def node(module_launch):
 def lines(*items):
     return ''.join(f'{item}\n' for item in items)
 
-
-def check(result, stdout, stderr='', code=0):
-    assert (result.stdout, result.stderr, result.returncode) == (stdout, stderr, code)
 
 
 # --- ros2 node -----------------------------------------------------------------------------

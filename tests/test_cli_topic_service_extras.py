@@ -6,9 +6,10 @@ import time
 
 import pytest
 
-from support import (
+from ws_testing import (
     RosProcess,
     TestNode,
+    check,
     interface_type,
     ros2,
 )
@@ -47,9 +48,6 @@ def background(module_ros_env, tmp_path):
     for process in started:
         process.stop()
 
-
-def check(result, stdout, stderr='', code=0):
-    assert (result.stdout, result.stderr, result.returncode) == (stdout, stderr, code)
 
 
 def test_find(module_ros_env, turtlesim):

@@ -5,7 +5,7 @@ import time
 
 import pytest
 
-from support import ros2
+from ws_testing import check, ros2
 
 PARAM_SERVICES = ['describe_parameters', 'get_parameter_types', 'get_parameters',
                   'get_type_description', 'list_parameters', 'set_parameters',
@@ -30,9 +30,6 @@ def own_turtlesim(launch):
 def lines(*items):
     return ''.join(f'{item}\n' for item in items)
 
-
-def check(result, stdout, stderr='', code=0):
-    assert (result.stdout, result.stderr, result.returncode) == (stdout, stderr, code)
 
 
 def test_service_list_is_the_tutorials(module_ros_env, turtlesim):

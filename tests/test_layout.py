@@ -328,9 +328,7 @@ OVERLAY_ON_PURPOSE = {'turtlesim', 'example_interfaces', 'my_robot_controller', 
                       'turtle_tf2_py', 'urdf_tutorial', 'urdf_tutorial_r2d2',
                       # the MuJoCo simulator: no upstream package of these names
                       'mujoco_sim', 'mujoco_sim_interfaces', 'diffbot_description',
-                      'diffbot_bringup',
-                      # the tests' fixtures and helpers (test-only)
-                      'ws_testing'}
+                      'diffbot_bringup'}
 
 
 def test_every_package_is_either_a_stand_in_to_skip_on_apt_jazzy_or_ours():

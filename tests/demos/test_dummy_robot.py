@@ -115,7 +115,7 @@ def test_dummy_robot_bringup_in_rviz(tmp_path: Path, domain: int, ros_env) -> No
     assert set(state['links']) >= RRBOT_LINKS, state['links']
     assert state['maps']['Map'] | {'drawn': 0, 'seq': 0, 'received': 0} == {
         'received': 0, 'drawn': 0, 'width': 100, 'height': 100, 'resolution': pytest.approx(0.1),
-        'frame': 'world', 'seq': 0}
+        'frame': 'world', 'seq': 0, 'scheme': 'map'}
     image = Image.open(shot).convert('RGB')
     pixel = image.getpixel((int(x), int(y)))
     assert close_to(pixel, UNKNOWN_ON_BACKGROUND), pixel

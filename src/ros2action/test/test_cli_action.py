@@ -6,7 +6,7 @@ import signal
 
 import pytest
 
-from ws_testing import RosProcess, ros2
+from ws_testing import RosProcess, check, ros2
 
 ACTION = '/turtle1/rotate_absolute'
 TYPE = 'turtlesim/action/RotateAbsolute'
@@ -18,9 +18,6 @@ NUMBER = r'-?\d+\.\d+(?:e-?\d+)?'
 def turtlesim(module_turtlesim):
     return module_turtlesim
 
-
-def check(result, stdout, stderr='', code=0):
-    assert (result.stdout, result.stderr, result.returncode) == (stdout, stderr, code)
 
 
 def test_list_type_info(module_ros_env, turtlesim):

@@ -7,7 +7,7 @@ import subprocess
 
 import pytest
 
-from ws_testing import TestNode, executable, ros2, ros2_side_by_side
+from ws_testing import TestNode, check, executable, ros2, ros2_side_by_side
 
 QOS = [f'qos_overrides./parameter_events.publisher.{name}'
        for name in ('depth', 'durability', 'history', 'reliability')]
@@ -81,9 +81,6 @@ def teleop(module_ros_env, tmp_path_factory):
 def lines(*items):
     return ''.join(f'{item}\n' for item in items)
 
-
-def check(result, stdout, stderr='', code=0):
-    assert (result.stdout, result.stderr, result.returncode) == (stdout, stderr, code)
 
 
 def test_param_list_matches_rclcpp_nodes(module_ros_env, turtlesim, teleop):

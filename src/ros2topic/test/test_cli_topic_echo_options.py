@@ -8,7 +8,7 @@ import time
 
 import pytest
 
-from ws_testing import Background, RosProcess, TestNode, interface_type, ros2
+from ws_testing import Background, RosProcess, TestNode, check, interface_type, ros2
 
 HELLO = 'hello'
 
@@ -46,9 +46,6 @@ def publishing(module_ros_env):
         yield module_ros_env
     probe.close()
 
-
-def check(result, stdout, stderr='', code=0):
-    assert (result.stdout, result.stderr, result.returncode) == (stdout, stderr, code), result
 
 
 def test_echo_formats(publishing):
