@@ -17,9 +17,12 @@ number.
 A replacement subscription catches up on the publisher's history while the old one has already
 printed it; a history sample the writer drops meanwhile (KEEP_LAST: the next publish pushes it
 out before the new reader has fetched it) comes as a message-lost event for a message the echo
-showed. So a replacement's lost events until CATCH_UP after its first message are not
+showed. So a subscription's lost events until CATCH_UP after its first message are not
 reported: they concern history, which a late subscriber is never promised (a volatile ros2cli
-echo never hears of it). The window is needed, not just "before the first message": the gap
+echo never hears of it). The first subscription too: a transient-local reliable echo of a
+publisher whose KEEP_LAST history moved on while the echo fetched it was told of the samples
+it never had (seen: 'A message was lost!!!' before the one message of `echo --once`).
+The window is needed, not just "before the first message": the gap
 notice and the next message arrive together, and rclpy's executor runs subscriptions first.
 """
 
@@ -42,7 +45,7 @@ from ros2topic.api.qos import (
 
 SEEN_KEPT = 4096  # message keys remembered to drop a repeat (deeper than any usual history)
 POLL_PERIOD = 0.05  # seconds between two looks at the publishers (cheap: the local cache)
-CATCH_UP = 1.0  # seconds after a replacement's first message in which its losses are history
+CATCH_UP = 1.0  # seconds after a subscription's first message in which its losses are history
 
 
 class AdaptiveSubscription:
@@ -87,8 +90,7 @@ class AdaptiveSubscription:
 
         events = subscription_events(self.node, self.topic, self.context,
                                      superseded=self._would_change)
-        replacing = hasattr(self, 'subscription')
-        first: list[float] = [] if replacing else [-CATCH_UP]  # monotonic time of 1st message
+        first: list[float] = []  # monotonic time of the subscription's first message
         if self.message_lost is not None:
             report = self.message_lost
 
@@ -96,7 +98,7 @@ class AdaptiveSubscription:
                 if first and time.monotonic() - first[0] >= CATCH_UP:
                     report(status)
             events.message_lost = lost
-        deliver = self._deliver if not replacing else self._noting_first(first)
+        deliver = self._noting_first(first)
         try:
             return self.node.create_subscription(self.msg_type, self.topic, deliver,
                                                  profile, event_callbacks=events, raw=self.raw)
